@@ -1,0 +1,47 @@
+// Per-step quantities of interest, as demos/piezocontact/diagnostics.py
+// computes them: probe values, the contact resultant, the largest u.nu - g
+// on Gamma_C and the reactions on clamped boundaries.
+#pragma once
+
+#include "problem.h"
+
+#include <array>
+#include <optional>
+
+namespace piezo
+{
+/// Point evaluation of (u, phi); each point on the lowest rank holding it
+class Probes
+{
+public:
+  Probes(const Problem& problem, const json& points, const std::string& source);
+  /// (u_x, u_y, phi) per probe, identical on all ranks
+  std::vector<std::array<double, 3>> evaluate(const Problem& problem) const;
+  std::vector<std::array<double, 3>> points;
+
+private:
+  std::vector<std::size_t> _mine;
+  std::vector<std::int32_t> _cells;
+};
+
+/// Vertices of the contact facets, their cells and outward unit normals
+class ContactGeometry
+{
+public:
+  explicit ContactGeometry(const Problem& problem);
+  /// Largest u.nu - g on Gamma_C; empty without a contact boundary
+  std::optional<double> max_normal_gap(const Problem& problem, double gap) const;
+
+private:
+  std::vector<double> _points;  // (n, 3)
+  std::vector<std::int32_t> _cells;
+  std::vector<std::array<double, 2>> _normals;
+};
+
+/// Resultant force of the foundation on the body (N/m)
+std::array<double, 2> contact_force(const Problem& problem);
+
+/// Force of each clamped support on the body: the sum of the unconstrained
+/// residual over the boundary's u-dofs, per component
+std::map<std::string, std::array<double, 2>> reactions(const Problem& problem);
+} // namespace piezo

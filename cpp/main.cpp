@@ -1,0 +1,117 @@
+// piezo-contact: quasistatic frictionless contact of a viscoelastic
+// piezoelectric body with a normal-compliance foundation (Barboteu,
+// Fernandez & Ouafik 2008), on the ffcx-compiled forms of forms/.
+//
+//   piezo-contact --config FILE --output DIR [--set key.path=value ...] [--quiet]
+//
+// Exit codes: 0 success, 2 bad input (config, output directory), 3 the
+// solver failed (Newton did not converge).
+#include "config.h"
+#include "time_loop.h"
+
+#include <dolfinx/common/log.h>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <petscsys.h>
+
+namespace
+{
+const char* usage
+    = "usage: piezo-contact --config FILE --output DIR [--set KEY.PATH=VALUE ...] "
+      "[--quiet]\n";
+
+/// Create DIR and check that it can be written, on rank 0; every rank then
+/// gets the same error, so that none waits for the others forever.
+void prepare_output(const std::filesystem::path& dir, const std::string& source,
+                    MPI_Comm comm)
+{
+  int rank;
+  MPI_Comm_rank(comm, &rank);
+  std::string error;
+  if (rank == 0)
+  {
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    const auto probe = dir / ".write-test";
+    if (!ec)
+    {
+      std::ofstream out(probe);
+      if (!out)
+        ec = std::make_error_code(std::errc::permission_denied);
+    }
+    std::filesystem::remove(probe, ec);
+    if (!std::filesystem::is_directory(dir) or !std::ofstream(probe))
+      error = source + ": --output " + dir.string()
+              + ": cannot write there: " + std::strerror(errno);
+    std::filesystem::remove(probe, ec);
+  }
+  int len = error.size();
+  MPI_Bcast(&len, 1, MPI_INT, 0, comm);
+  error.resize(len);
+  MPI_Bcast(error.data(), len, MPI_CHAR, 0, comm);
+  if (!error.empty())
+    throw piezo::ConfigError(error);
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  dolfinx::init_logging(argc, argv);
+  PetscInitialize(&argc, &argv, nullptr, nullptr);
+  int rank;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  int code = 0;
+  std::string config_path, output_dir;
+  std::vector<std::string> overrides;
+  bool quiet = false;
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string a = argv[i];
+    if (a == "--config" and i + 1 < argc)
+      config_path = argv[++i];
+    else if (a == "--output" and i + 1 < argc)
+      output_dir = argv[++i];
+    else if (a == "--set" and i + 1 < argc)
+      overrides.push_back(argv[++i]);
+    else if (a == "--quiet")
+      quiet = true;
+    else if (a == "-h" or a == "--help")
+    {
+      if (rank == 0)
+        std::cout << usage;
+      PetscFinalize();
+      return 0;
+    }
+    else if (a.rfind("-dolfinx_", 0) == 0 or a.rfind("-", 0) == 0)
+      continue; // PETSc / dolfinx options are read from the database
+  }
+  if (config_path.empty() or output_dir.empty())
+  {
+    if (rank == 0)
+      std::cerr << usage << "error: --config and --output are required\n";
+    PetscFinalize();
+    return piezo::exit_config_error;
+  }
+
+  try
+  {
+    const piezo::json cfg = piezo::load_config(config_path, overrides);
+    prepare_output(output_dir, config_path, MPI_COMM_WORLD);
+    piezo::run(cfg, output_dir, MPI_COMM_WORLD, !quiet, config_path);
+  }
+  catch (const piezo::ConfigError& e)
+  {
+    if (rank == 0)
+      std::cerr << "error: " << e.what() << std::endl;
+    code = piezo::exit_config_error;
+  }
+  catch (const piezo::NewtonFailure& e)
+  {
+    if (rank == 0)
+      std::cerr << "error: " << e.what() << std::endl;
+    code = piezo::exit_run_error;
+  }
+  PetscFinalize();
+  return code;
+}

@@ -1,0 +1,239 @@
+#include "problem.h"
+#include "piezo_contact.h"
+#include "piezo_forms_meta.h"
+
+#include <algorithm>
+#include <basix/finite-element.h>
+#include <dolfinx/fem/utils.h>
+#include <dolfinx/mesh/generation.h>
+#include <dolfinx/mesh/utils.h>
+#include <numeric>
+
+namespace piezo
+{
+namespace
+{
+// Built-in unit square: boundary name -> (axis, coordinate)
+const std::map<std::string, std::pair<int, double>> unit_square_sides
+    = {{"bottom", {1, 0.0}}, {"left", {0, 0.0}}, {"right", {0, 1.0}}, {"top", {1, 1.0}}};
+
+mesh::DiagonalType diagonal_type(const std::string& name)
+{
+  const std::map<std::string, mesh::DiagonalType> types
+      = {{"right", mesh::DiagonalType::right},
+         {"left", mesh::DiagonalType::left},
+         {"crossed", mesh::DiagonalType::crossed},
+         {"left_right", mesh::DiagonalType::left_right},
+         {"right_left", mesh::DiagonalType::right_left}};
+  return types.at(name);
+}
+} // namespace
+
+Problem::Problem(const json& cfg_, MPI_Comm comm_, const std::string& source)
+    : cfg(cfg_), comm(comm_)
+{
+  // Mesh and facet tags: tag = 1 + index of the name in sorted order
+  const std::size_t n = cfg["mesh"]["n"].get<std::size_t>();
+  mesh = std::make_shared<mesh::Mesh>(mesh::create_rectangle(
+      comm, {{{0.0, 0.0}, {1.0, 1.0}}}, {n, n}, mesh::CellType::triangle,
+      mesh::GhostMode::shared_facet,
+      diagonal_type(cfg["mesh"]["diagonal"].get<std::string>())));
+  std::vector<std::pair<std::int32_t, std::int32_t>> tagged;
+  int slot = 0;
+  for (const auto& [name, side] : unit_square_sides) // std::map: sorted names
+  {
+    const auto [axis, c] = side;
+    const auto facets = mesh::locate_entities_boundary(
+        *mesh, 1,
+        [axis = axis, c = c](const xt::xtensor<double, 2>& X)
+        {
+          xt::xtensor<bool, 1> on(std::array<std::size_t, 1>{X.shape(1)});
+          for (std::size_t i = 0; i < X.shape(1); ++i)
+            on(i) = std::abs(X(axis, i) - c) <= 1e-8 + 1e-5 * std::abs(c);
+          return on;
+        });
+    tag_of[name] = ++slot;
+    for (auto f : facets)
+      tagged.emplace_back(f, slot);
+  }
+  std::sort(tagged.begin(), tagged.end()); // MeshTags needs sorted indices
+  std::vector<std::int32_t> indices, values;
+  for (auto [f, v] : tagged)
+  {
+    indices.push_back(f);
+    values.push_back(v);
+  }
+  facet_tags = std::make_shared<mesh::MeshTags<std::int32_t>>(
+      mesh, 1, std::move(indices), std::move(values));
+
+  if (static_cast<int>(tag_of.size()) > forms::max_boundaries)
+    throw ConfigError(source + ": mesh: " + std::to_string(tag_of.size())
+                      + " named boundaries, the forms support "
+                      + std::to_string(forms::max_boundaries));
+  for (const auto& [name, _] : cfg["boundaries"].items())
+  {
+    if (!tag_of.contains(name))
+    {
+      std::string have;
+      for (const auto& [m, __] : tag_of)
+        have += (have.empty() ? "" : ", ") + m;
+      throw ConfigError(source + ": boundaries." + name
+                        + ": the mesh has no boundary '" + name
+                        + "' (it has: " + have + ")");
+    }
+  }
+
+  W = std::make_shared<fem::FunctionSpace>(fem::create_functionspace(
+      functionspace_form_piezo_contact_F, "x", mesh));
+  x = std::make_shared<fem::Function<double>>(W);
+  x->name = "x";
+  x_prev = std::make_shared<fem::Function<double>>(W);
+  x_prev->name = "x_prev";
+
+  for (const auto& [name, shape] : forms::constant_shapes)
+  {
+    const std::size_t size = std::accumulate(shape.begin(), shape.end(),
+                                             std::size_t(1), std::multiplies{});
+    const std::vector<double> zeros(size, 0.0);
+    constants[name] = std::make_shared<fem::Constant<double>>(
+        std::span<const double>(zeros), std::span<const std::size_t>(shape));
+  }
+  set_constants();
+
+  const std::map<std::string, std::shared_ptr<const fem::Function<double>>>
+      coefficients = {{"x", x}, {"x_prev", x_prev}};
+  const std::map<std::string, std::shared_ptr<const fem::Constant<double>>>
+      consts(constants.begin(), constants.end());
+  const std::map<fem::IntegralType, const mesh::MeshTags<int>*> subdomains
+      = {{fem::IntegralType::exterior_facet, facet_tags.get()}};
+  F = std::make_shared<fem::Form<double>>(fem::create_form<double>(
+      *form_piezo_contact_F, {W}, coefficients, consts, subdomains));
+  J = std::make_shared<fem::Form<double>>(fem::create_form<double>(
+      *form_piezo_contact_J, {W, W}, coefficients, consts, subdomains));
+  contact_force[0] = std::make_shared<fem::Form<double>>(fem::create_form<double>(
+      *form_piezo_contact_contact_force_x, {}, coefficients, consts, subdomains, mesh));
+  contact_force[1] = std::make_shared<fem::Form<double>>(fem::create_form<double>(
+      *form_piezo_contact_contact_force_y, {}, coefficients, consts, subdomains, mesh));
+  D_expr = std::make_shared<fem::Expression<double>>(fem::create_expression<double>(
+      *expression_piezo_contact_electric_displacement, coefficients, consts, mesh));
+  stress_expr = std::make_shared<fem::Expression<double>>(fem::create_expression<double>(
+      *expression_piezo_contact_stress, coefficients, consts, mesh));
+
+  // Collapsed sub-spaces and the W-dofs of each field
+  auto [Vu, map_u] = W->sub({0})->collapse();
+  V_u = std::make_shared<fem::FunctionSpace>(std::move(Vu));
+  u_dofs = std::move(map_u);
+  auto [Vphi, map_phi] = W->sub({1})->collapse();
+  V_phi = std::make_shared<fem::FunctionSpace>(std::move(Vphi));
+  phi_dofs = std::move(map_phi);
+  u = std::make_shared<fem::Function<double>>(V_u);
+  u->name = "u";
+  phi = std::make_shared<fem::Function<double>>(V_phi);
+  phi->name = "phi";
+  create_bcs();
+}
+
+void Problem::set_constants()
+{
+  auto set = [this](const std::string& name, const json& value)
+  {
+    auto& v = constants.at(name)->value;
+    if (!value.is_array())
+      v.assign(1, value.get<double>());
+    else
+    {
+      // row-major order of the nested lists
+      std::size_t i = 0;
+      std::function<void(const json&)> walk = [&](const json& node)
+      {
+        if (node.is_array())
+          for (const auto& item : node)
+            walk(item);
+        else
+          v.at(i++) = node.get<double>();
+      };
+      walk(value);
+    }
+  };
+  const json& mat = cfg["material"];
+  set("Bv", mat["elastic"]);
+  set("Av", mat["viscosity"]);
+  set("e", mat["piezoelectric"]);
+  set("beta", mat["permittivity"]);
+  set("c_p", cfg["contact"]["c_p"]);
+  set("g", cfg["contact"]["gap"]);
+  set("k", cfg["time"]["T"].get<double>() / cfg["time"]["steps"].get<double>());
+  set("f0", cfg["loads"]["body_force"]);
+  set("q0", cfg["loads"]["charge_density"]);
+  for (const auto& [name, bc] : cfg["boundaries"].items())
+  {
+    const std::size_t s = tag_of.at(name) - 1;
+    const json traction = bc.value("traction", json::array({0.0, 0.0}));
+    constants.at("fF")->value.at(2 * s) = traction[0].get<double>();
+    constants.at("fF")->value.at(2 * s + 1) = traction[1].get<double>();
+    constants.at("qF")->value.at(s) = bc.value("surface_charge", 0.0);
+    constants.at("chi")->value.at(s) = bc.value("contact", false) ? 1.0 : 0.0;
+  }
+}
+
+std::vector<std::int32_t>
+Problem::boundary_facets(const std::string& name) const
+{
+  std::vector<std::int32_t> facets;
+  const auto& idx = facet_tags->indices();
+  const auto& val = facet_tags->values();
+  for (std::size_t i = 0; i < idx.size(); ++i)
+    if (val[i] == tag_of.at(name))
+      facets.push_back(idx[i]);
+  return facets;
+}
+
+// u and phi Dirichlet conditions on the collapsed sub-spaces (a Constant on a
+// vector sub-space of a mixed space throws in 0.5.2).
+void Problem::create_bcs()
+{
+  std::map<std::string, json> sorted_bcs; // same order as the Python twin
+  for (const auto& [name, bc] : cfg["boundaries"].items())
+    sorted_bcs[name] = bc;
+  for (const auto& [name, bc] : sorted_bcs)
+  {
+    const auto facets = boundary_facets(name);
+    if (bc.contains("displacement"))
+    {
+      auto g = std::make_shared<fem::Function<double>>(V_u);
+      auto values = g->x()->mutable_array();
+      for (std::size_t i = 0; i < values.size(); ++i)
+        values[i] = bc["displacement"][i % 2].get<double>();
+      auto dofs = fem::locate_dofs_topological({*W->sub({0}), *V_u}, 1, facets);
+      bcs.push_back(std::make_shared<fem::DirichletBC<double>>(g, std::move(dofs), W->sub({0})));
+      std::array<std::vector<std::int32_t>, 2> comp;
+      for (int i = 0; i < 2; ++i)
+      {
+        const auto Vi = V_u->sub({i})->collapse().first;
+        // W->sub({0, i}) is not W.sub(0).sub(i) in 0.5.2: chain single levels
+        comp[i] = fem::locate_dofs_topological({*W->sub({0})->sub({i}), Vi}, 1, facets)[0];
+      }
+      clamped_dofs[name] = comp;
+    }
+    if (bc.contains("potential"))
+    {
+      auto g = std::make_shared<fem::Function<double>>(V_phi);
+      std::fill(g->x()->mutable_array().begin(), g->x()->mutable_array().end(),
+                bc["potential"].get<double>());
+      auto dofs = fem::locate_dofs_topological({*W->sub({1}), *V_phi}, 1, facets);
+      bcs.push_back(std::make_shared<fem::DirichletBC<double>>(g, std::move(dofs), W->sub({1})));
+    }
+  }
+}
+
+void Problem::update_fields()
+{
+  auto xa = x->x()->array();
+  auto ua = u->x()->mutable_array();
+  auto pa = phi->x()->mutable_array();
+  for (std::size_t i = 0; i < u_dofs.size(); ++i)
+    ua[i] = xa[u_dofs[i]];
+  for (std::size_t i = 0; i < phi_dofs.size(); ++i)
+    pa[i] = xa[phi_dofs[i]];
+}
+} // namespace piezo

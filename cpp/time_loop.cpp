@@ -1,0 +1,255 @@
+#include "time_loop.h"
+#include "diagnostics.h"
+#include "fieldwise.h"
+#include "output.h"
+#include "problem.h"
+
+#include <chrono>
+#include <cstdio>
+#include <dolfinx/fem/assembler.h>
+#include <dolfinx/fem/petsc.h>
+#include <dolfinx/la/petsc.h>
+#include <dolfinx/nls/NewtonSolver.h>
+#include <iostream>
+
+namespace piezo
+{
+namespace
+{
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0)
+{
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+/// Residual and Jacobian assembly in the way of dolfinx Python's
+/// NonlinearProblem.F/J (the 0.5.2 C++ hyperelasticity demo's F callback
+/// omits the lifting and is no model).
+class System
+{
+public:
+  System(Problem& p, FieldwiseConvergence& monitor) : _p(p), _monitor(monitor)
+  {
+    b = la::petsc::create_vector(*p.W->dofmap()->index_map, p.W->dofmap()->index_map_bs());
+    A = fem::petsc::create_matrix(*p.J);
+  }
+  ~System()
+  {
+    VecDestroy(&b);
+    MatDestroy(&A);
+  }
+
+  void F(const Vec x, Vec r)
+  {
+    const auto t0 = Clock::now();
+    Vec r_local;
+    VecGhostGetLocalForm(r, &r_local);
+    VecSet(r_local, 0.0);
+    VecGhostRestoreLocalForm(r, &r_local);
+    fem::petsc::assemble_vector(r, *_p.F);
+    fem::petsc::apply_lifting(r, {_p.J}, {_p.bcs}, {x}, -1.0);
+    VecGhostUpdateBegin(r, ADD_VALUES, SCATTER_REVERSE);
+    VecGhostUpdateEnd(r, ADD_VALUES, SCATTER_REVERSE);
+    fem::petsc::set_bc(r, _p.bcs, x, -1.0);
+    assembly_s += seconds_since(t0);
+  }
+
+  void J(const Vec, Mat M)
+  {
+    const auto t0 = Clock::now();
+    MatZeroEntries(M);
+    fem::assemble_matrix(la::petsc::Matrix::set_fn(M, ADD_VALUES), *_p.J, _p.bcs);
+    MatAssemblyBegin(M, MAT_FLUSH_ASSEMBLY);
+    MatAssemblyEnd(M, MAT_FLUSH_ASSEMBLY);
+    fem::set_diagonal<double>(la::petsc::Matrix::set_fn(M, INSERT_VALUES), *_p.W, _p.bcs);
+    MatAssemblyBegin(M, MAT_FINAL_ASSEMBLY);
+    MatAssemblyEnd(M, MAT_FINAL_ASSEMBLY);
+    assembly_s += seconds_since(t0);
+    _monitor.set_scaling(M);
+  }
+
+  Vec b;
+  Mat A;
+  double assembly_s = 0.0;
+
+private:
+  Problem& _p;
+  FieldwiseConvergence& _monitor;
+};
+
+std::string option_value(const json& v)
+{
+  if (v.is_string())
+    return v.get<std::string>();
+  return v.dump(); // numbers, true/false
+}
+
+json fields_json(const std::map<std::string, FieldNorms>& norms,
+                 double FieldNorms::*member)
+{
+  json out = json::object();
+  for (const char* f : {"u", "phi"})
+    out[f] = norms.at(f).*member;
+  return out;
+}
+
+json step_record(const Problem& problem, const Probes& probes,
+                 const ContactGeometry& contact, const FieldwiseConvergence& monitor,
+                 double t, int its)
+{
+  const auto& final = monitor.history.back();
+  json step = json::object();
+  step["t"] = t;
+  step["newton_iterations"] = its;
+  step["residual_norms"] = fields_json(final, &FieldNorms::residual);
+  step["relative_residuals"] = fields_json(final, &FieldNorms::relative);
+  step["residual_history"] = json::array();
+  for (const auto& h : monitor.history)
+    step["residual_history"].push_back(fields_json(h, &FieldNorms::relative));
+  step["probes"] = json::array();
+  const auto values = probes.evaluate(problem);
+  for (std::size_t i = 0; i < values.size(); ++i)
+  {
+    step["probes"].push_back({{"point", {probes.points[i][0], probes.points[i][1]}},
+                              {"u", {values[i][0], values[i][1]}},
+                              {"phi", values[i][2]}});
+  }
+  const auto force = contact_force(problem);
+  step["contact_force"] = {force[0], force[1]};
+  const auto gap = contact.max_normal_gap(problem, problem.cfg["contact"]["gap"].get<double>());
+  step["max_penetration"] = gap ? json(*gap) : json(nullptr);
+  step["reactions"] = json::object();
+  for (const auto& [name, r] : reactions(problem))
+    step["reactions"][name] = {r[0], r[1]};
+  return step;
+}
+
+void print_progress(int n, int N, const json& step)
+{
+  const json& r = step["relative_residuals"];
+  char gap[32] = "n/a";
+  if (!step["max_penetration"].is_null())
+    std::snprintf(gap, sizeof(gap), "%.3e", step["max_penetration"].get<double>());
+  std::printf("[cpp] step %4d/%d  t = %.4g  newton %d  rel. residual u %.1e phi %.1e"
+              "  max(u.nu - g) = %s\n",
+              n, N, step["t"].get<double>(), step["newton_iterations"].get<int>(),
+              r["u"].get<double>(), r["phi"].get<double>(), gap);
+  std::fflush(stdout);
+}
+} // namespace
+
+json run(const json& cfg, const std::filesystem::path& out_dir, MPI_Comm comm,
+         bool progress, const std::string& source)
+{
+  const auto t_start = Clock::now();
+  int rank, size;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
+
+  Problem problem(cfg, comm, source);
+  Probes probes(problem, cfg["probes"], source);
+  ContactGeometry contact(problem);
+  const json& newton_cfg = cfg["solver"]["newton"];
+  const auto& imap = *problem.W->dofmap()->index_map;
+  const int bs = problem.W->dofmap()->index_map_bs();
+  FieldwiseConvergence monitor({{"u", problem.u_dofs}, {"phi", problem.phi_dofs}},
+                               imap.size_local() * bs, newton_cfg["rtol"].get<double>(),
+                               newton_cfg["atol"].get<double>(), comm);
+  System system(problem, monitor);
+
+  Vec x = la::petsc::create_vector_wrap(*problem.x->x());
+  nls::petsc::NewtonSolver newton(comm);
+  newton.setF([&system](const Vec x, Vec r) { system.F(x, r); }, system.b);
+  newton.setJ([&system](const Vec x, Mat A) { system.J(x, A); }, system.A);
+  newton.set_form(
+      [](Vec x)
+      {
+        VecGhostUpdateBegin(x, INSERT_VALUES, SCATTER_FORWARD);
+        VecGhostUpdateEnd(x, INSERT_VALUES, SCATTER_FORWARD);
+      });
+  // The built-in test keeps residual0 across solves and sees only u
+  newton.set_convergence_check(
+      [&monitor, &problem](const nls::petsc::NewtonSolver&, const Vec r)
+      {
+        PetscInt n;
+        VecGetLocalSize(r, &n);
+        const PetscScalar* ra;
+        VecGetArrayRead(r, &ra);
+        const bool ok = monitor.check(problem.x->x()->array().subspan(0, n),
+                                      std::span<const double>(ra, n));
+        VecRestoreArrayRead(r, &ra);
+        PetscReal norm;
+        VecNorm(r, NORM_2, &norm);
+        return std::pair<double, bool>(norm, ok);
+      });
+  newton.max_it = newton_cfg["max_iterations"].get<int>();
+  newton.report = false;
+  newton.error_on_nonconvergence = false;
+  // After the constructor, which writes its own nls_solve_ defaults
+  for (const auto& [key, value] : cfg["solver"]["petsc_options"].items())
+    la::petsc::options::set("nls_solve_" + key, option_value(value));
+  newton.get_krylov_solver().set_from_options();
+
+  Writer writer(problem, out_dir);
+  json summary = {{"solver", "cpp"},
+                  {"dofs", imap.size_global() * bs},
+                  {"mpi_size", size},
+                  {"config", cfg},
+                  {"steps", json::array()},
+                  {"timing", json::object()}};
+
+  const double T = cfg["time"]["T"].get<double>();
+  const int N = cfg["time"]["steps"].get<int>();
+  const double k = T / N;
+  auto xa = problem.x->x()->mutable_array();
+  auto xp = problem.x_prev->x()->mutable_array();
+  std::vector<double> x_prev2(xp.begin(), xp.end()); // u_{n-2}, for the predictor
+  system.J(x, system.A);                              // initial scaling D
+  double solve_s = 0.0;
+  for (int n = 1; n <= N; ++n)
+  {
+    const double t = n * k;
+    // Predictor u^0 = u_{n-1} + k du_{n-1}, phi^0 = phi_{n-1}; then the BCs
+    for (auto d : problem.u_dofs)
+      xa[d] = 2.0 * xp[d] - x_prev2[d];
+    for (const auto& bc : problem.bcs)
+      bc->set(xa);
+    problem.x->x()->scatter_fwd();
+    monitor.history.clear();
+    const double a0 = system.assembly_s;
+    const auto t0 = Clock::now();
+    const auto [its, converged] = newton.solve(x);
+    problem.x->x()->scatter_fwd();
+    solve_s += seconds_since(t0) - (system.assembly_s - a0);
+    if (!converged)
+    {
+      const auto& last = monitor.history.back();
+      char msg[256];
+      std::snprintf(msg, sizeof(msg),
+                    "Newton did not converge at t = %g (step %d) in %d iterations: "
+                    "relative residuals u = %.3e, phi = %.3e",
+                    t, n, its, last.at("u").relative, last.at("phi").relative);
+      VecDestroy(&x);
+      throw NewtonFailure(msg);
+    }
+    problem.update_fields();
+    json step = step_record(problem, probes, contact, monitor, t, its);
+    std::copy(xp.begin(), xp.end(), x_prev2.begin());
+    std::copy(xa.begin(), xa.end(), xp.begin());
+    writer.write_step(n, t, n == N);
+    summary["steps"].push_back(step);
+    summary["timing"] = {{"total_s", seconds_since(t_start)},
+                         {"assembly_s", system.assembly_s},
+                         {"solve_s", solve_s}};
+    if (rank == 0)
+    {
+      write_json_atomic(out_dir / "summary.json", summary);
+      if (progress)
+        print_progress(n, N, step);
+    }
+  }
+  VecDestroy(&x);
+  return summary;
+}
+} // namespace piezo

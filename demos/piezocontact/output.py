@@ -1,0 +1,69 @@
+"""Run outputs, same layout as the C++ solver (cpp/output.cpp):
+  DIR/summary.json           the run's record, rewritten atomically each step
+  DIR/solution.xdmf (+.h5)   u, phi (vertex) and D, stress (cell) for ParaView
+  DIR/nodal/{u,phi}_NNNN.npy nodal values [x, y, value...] gathered on rank 0,
+                             the exact data the C++/Python comparison reads
+"""
+
+import json
+import os
+from pathlib import Path
+
+import numpy as np
+from dolfinx import fem, io
+
+
+def write_json_atomic(path, obj):
+    """Write-then-rename: an interrupted run never leaves a half-written file."""
+    path = Path(path)
+    tmp = path.with_name("." + path.name + ".tmp")
+    tmp.write_text(json.dumps(obj, indent=1))
+    os.replace(tmp, path)
+
+
+def gather_nodal(function, comm):
+    """[x, y, values...] of the owned dofs of a collapsed P1 function, on rank 0."""
+    V = function.function_space
+    n = V.dofmap.index_map.size_local
+    bs = V.dofmap.index_map_bs
+    rows = np.column_stack([V.tabulate_dof_coordinates()[:n, :2],
+                            function.x.array[:n * bs].reshape(n, bs)])
+    parts = comm.gather(rows, root=0)
+    return np.vstack(parts) if comm.rank == 0 else None
+
+
+class Writer:
+    def __init__(self, problem, out_dir, cfg):
+        self.problem = problem
+        self.comm = problem.comm
+        self.dir = Path(out_dir)
+        self.nodal = cfg["output"]["nodal"]
+        if self.comm.rank == 0:
+            (self.dir / "nodal").mkdir(parents=True, exist_ok=True)
+        self.comm.barrier()
+        self.xdmf = None
+        if cfg["output"]["xdmf"]:
+            dg0 = ("DG", 0)
+            self.D = fem.Function(fem.VectorFunctionSpace(problem.mesh, dg0), name="D")
+            self.stress = fem.Function(fem.VectorFunctionSpace(problem.mesh, dg0, dim=3),
+                                       name="stress_voigt")
+            self.xdmf = io.XDMFFile(self.comm, str(self.dir / "solution.xdmf"), "w")
+            self.xdmf.write_mesh(problem.mesh)
+
+    def write_step(self, step, t, final):
+        """Write the state of problem.u, problem.phi (updated by the caller)."""
+        u, phi = self.problem.u, self.problem.phi
+        if self.xdmf is not None:
+            self.D.interpolate(self.problem.D_expr)
+            self.stress.interpolate(self.problem.stress_expr)
+            for f in (u, phi, self.D, self.stress):
+                self.xdmf.write_function(f, t)
+        if self.nodal == "all" or (self.nodal == "final" and final):
+            for name, f in (("u", u), ("phi", phi)):
+                rows = gather_nodal(f, self.comm)
+                if self.comm.rank == 0:
+                    np.save(self.dir / "nodal" / f"{name}_{step:04d}.npy", rows)
+
+    def close(self):
+        if self.xdmf is not None:
+            self.xdmf.close()
