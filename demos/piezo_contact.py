@@ -15,8 +15,7 @@ def main():
     comm = MPI.COMM_WORLD
     try:
         cfg = config.load(args.config, args.set)
-        if comm.rank == 0:
-            cli.prepare_output(args.output, args.config)
+        cli.prepare_output(args.output, args.config, comm)
         twin.run(cfg, args.output, comm, progress=not args.quiet, source=args.config)
     except config.ConfigError as err:
         cli.fail(str(err), config.EXIT_CONFIG_ERROR)

@@ -2,7 +2,6 @@
 exit codes as the C++ executable `piezo-contact`."""
 
 import argparse
-import logging
 import sys
 from pathlib import Path
 
@@ -13,12 +12,18 @@ from . import config
 EXIT_RUN_ERROR = 3
 
 
+def _abort_on_uncaught(exc_type, exc, tb):
+    """An unexpected exception on one rank must not leave the others waiting
+    in a collective call: print it and abort the whole MPI job."""
+    sys.__excepthook__(exc_type, exc, tb)
+    if MPI.COMM_WORLD.size > 1:
+        MPI.COMM_WORLD.Abort(1)
+
+
+sys.excepthook = _abort_on_uncaught
+
+
 def parser(description):
-    # ffcx/cffi JIT compilation logs every compiler call at INFO on the root
-    # logger; keep its handler at WARNING
-    logging.basicConfig()
-    for handler in logging.getLogger().handlers:
-        handler.setLevel(logging.WARNING)
     ap = argparse.ArgumentParser(description=description)
     ap.add_argument("--config", required=True, help="JSON run configuration")
     ap.add_argument("--output", required=True, help="output directory")
@@ -35,12 +40,18 @@ def fail(message, code):
     sys.exit(code)
 
 
-def prepare_output(path, source):
-    try:
-        Path(path).mkdir(parents=True, exist_ok=True)
-        probe = Path(path) / ".write-test"
-        probe.write_text("")
-        probe.unlink()
-    except OSError as err:
-        raise config.ConfigError(f"{source}: --output {path}: cannot write there: "
-                                 f"{err.strerror}") from None
+def prepare_output(path, source, comm):
+    """Create DIR and check it can be written, on rank 0; every rank gets the
+    same error, so that none waits for the others forever."""
+    error = None
+    if comm.rank == 0:
+        try:
+            Path(path).mkdir(parents=True, exist_ok=True)
+            probe = Path(path) / ".write-test"
+            probe.write_text("")
+            probe.unlink()
+        except OSError as err:
+            error = f"{source}: --output {path}: cannot write there: {err.strerror}"
+    error = comm.bcast(error, root=0)
+    if error:
+        raise config.ConfigError(error)

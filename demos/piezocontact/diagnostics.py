@@ -8,7 +8,7 @@ from dolfinx import cpp as _cpp
 from mpi4py import MPI
 from petsc4py import PETSc
 
-from .config import ConfigError
+from .config import ConfigError, _fmt
 
 
 class Probes:
@@ -27,12 +27,13 @@ class Probes:
             links = colliding.links(i)
             if len(links) > 0:
                 cells[i] = links[0]  # a ghost cell is fine: ghosts are up to date
-        have = np.where(cells >= 0, comm.rank, comm.size)
-        owner = comm.allreduce(have, op=MPI.MIN) if len(points) else have
+        have = np.where(cells >= 0, comm.rank, comm.size).astype(np.int32)
+        owner = np.empty_like(have)
+        comm.Allreduce(have, owner, op=MPI.MIN)
         for i, o in enumerate(owner):
             if o == comm.size:
-                raise ConfigError(f"{source}: probes[{i}] = {list(points[i])}: "
-                                  "outside the mesh")
+                where = _fmt([float(v) for v in points[i]])
+                raise ConfigError(f"{source}: probes[{i}] = {where}: outside the mesh")
         self.mine = np.flatnonzero(owner == comm.rank)
         self.cells = cells[self.mine]
         self.comm = comm
@@ -42,9 +43,11 @@ class Probes:
         values = np.zeros((len(self.points), 3))
         if len(self.mine):
             pts = self.points[self.mine]
-            values[self.mine, :2] = u.eval(pts, self.cells)
-            values[self.mine, 2] = phi.eval(pts, self.cells)[:, 0]
-        return self.comm.allreduce(values, op=MPI.SUM)
+            values[self.mine, :2] = u.eval(pts, self.cells).reshape(len(pts), 2)
+            values[self.mine, 2] = phi.eval(pts, self.cells).reshape(len(pts))
+        total = np.empty_like(values)
+        self.comm.Allreduce(values, total, op=MPI.SUM)
+        return total
 
 
 class ContactGeometry:
@@ -78,7 +81,7 @@ class ContactGeometry:
         """Largest u.nu - g over Gamma_C (None without a contact boundary)."""
         local = -np.inf
         if len(self.cells):
-            values = u.eval(self.points, self.cells)
+            values = u.eval(self.points, self.cells).reshape(len(self.points), 2)
             local = float(np.max(np.sum(values * self.normals, axis=1)) - gap)
         largest = self.comm.allreduce(local, op=MPI.MAX)
         return None if largest == -np.inf else largest

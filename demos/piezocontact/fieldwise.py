@@ -38,7 +38,10 @@ class FieldwiseConvergence:
             d = self.dofs[f]
             local += [np.sum(b_owned[d] ** 2), np.sum((b_owned[d] / self.sqrt_d[d]) ** 2),
                       np.sum((x_owned[d] * self.sqrt_d[d]) ** 2)]
-        return np.sqrt(self.comm.allreduce(np.array(local), op=MPI.SUM)).reshape(2, 3)
+        local = np.array(local)
+        total = np.empty_like(local)
+        self.comm.Allreduce(local, total, op=MPI.SUM)
+        return np.sqrt(total).reshape(2, 3)
 
     def check(self, x_owned, b_owned):
         """Record one iterate; return True when every field has converged."""

@@ -1,0 +1,106 @@
+"""Compare two runs (e.g. C++ and Python) of the same config: probe values at
+every step and the relative L2 difference of the u and phi fields.
+
+Fields are compared as finite element functions: the nodal values each solver
+wrote (DIR/nodal) are matched to the dofs of the config's mesh by coordinates
+(so serial and MPI runs compare too) and ||a - b||_L2 / ||b||_L2 is assembled.
+"""
+
+import json
+from pathlib import Path
+
+import numpy as np
+import ufl
+from dolfinx import fem
+from mpi4py import MPI
+
+from .problem import build_mesh
+
+
+def load_summary(out_dir):
+    return json.loads((Path(out_dir) / "summary.json").read_text())
+
+
+def rel(a, b):
+    """|a - b| / |b| with a floor so that two zeros agree."""
+    a, b = np.asarray(a, float), np.asarray(b, float)
+    return float(np.max(np.abs(a - b) / np.maximum(np.abs(b), 1e-300)))
+
+
+def probe_differences(run, ref):
+    """Largest relative difference of each probe quantity over all steps,
+    relative to the largest magnitude of that quantity at that probe."""
+    out = []
+    for i, p in enumerate(ref["steps"][0]["probes"]):
+        worst = {"point": p["point"], "u": 0.0, "phi": 0.0}
+        for key in ("u", "phi"):
+            a = np.array([s["probes"][i][key] for s in run["steps"]], float)
+            b = np.array([s["probes"][i][key] for s in ref["steps"]], float)
+            scale = max(np.max(np.abs(b)), 1e-300)
+            worst[key] = float(np.max(np.abs(a - b)) / scale)
+        out.append(worst)
+    return out
+
+
+class FieldComparer:
+    """P1 functions on the config's mesh filled from nodal files."""
+
+    def __init__(self, cfg, comm=MPI.COMM_SELF):
+        self.mesh, _, _ = build_mesh(cfg, comm)
+        self.V = {"u": fem.VectorFunctionSpace(self.mesh, ("Lagrange", 1)),
+                  "phi": fem.FunctionSpace(self.mesh, ("Lagrange", 1))}
+        self._order = {f: self._lexorder(V.tabulate_dof_coordinates()[:, :2])
+                       for f, V in self.V.items()}
+
+    @staticmethod
+    def _lexorder(xy):
+        key = np.round(xy, 12)
+        return np.lexsort((key[:, 1], key[:, 0]))
+
+    def function(self, nodal_file, field):
+        rows = np.load(nodal_file)
+        V = self.V[field]
+        f = fem.Function(V)
+        dofs = self._order[field]
+        src = self._lexorder(rows[:, :2])
+        if len(src) != len(dofs) or not np.allclose(
+                rows[src, :2], V.tabulate_dof_coordinates()[dofs, :2], atol=1e-12):
+            raise ValueError(f"{nodal_file}: nodes do not match the mesh of the config")
+        bs = V.dofmap.index_map_bs
+        f.x.array.reshape(-1, bs)[dofs] = rows[src, 2:]
+        return f
+
+    def relative_l2(self, file_a, file_b, field):
+        a, b = self.function(file_a, field), self.function(file_b, field)
+        diff = fem.form(ufl.inner(a - b, a - b) * ufl.dx)
+        norm = fem.form(ufl.inner(b, b) * ufl.dx)
+        d, n = fem.assemble_scalar(diff), fem.assemble_scalar(norm)
+        return float(np.sqrt(d / n)) if n > 0 else float(np.sqrt(d))
+
+
+def field_differences(dir_a, dir_b, cfg):
+    """{step: {"u": rel L2, "phi": rel L2}} for every step both runs wrote."""
+    comparer = FieldComparer(cfg)
+    out = {}
+    for fa in sorted((Path(dir_a) / "nodal").glob("u_*.npy")):
+        step = fa.stem.split("_")[1]
+        if not (Path(dir_b) / "nodal" / fa.name).exists():
+            continue
+        out[int(step)] = {f: comparer.relative_l2(Path(dir_a) / "nodal" / f"{f}_{step}.npy",
+                                                  Path(dir_b) / "nodal" / f"{f}_{step}.npy", f)
+                          for f in ("u", "phi")}
+    return out
+
+
+def table(run, ref, names=("C++", "Python")):
+    """Side-by-side probe values at the final time, as text."""
+    a, b = run["steps"][-1], ref["steps"][-1]
+    lines = [f"probe values at t = {b['t']:g}",
+             f"{'point':>12} {'quantity':>8} {names[0]:>24} {names[1]:>24} {'rel. diff':>10}"]
+    for pa, pb in zip(a["probes"], b["probes"]):
+        pt = f"({pb['point'][0]:g}, {pb['point'][1]:g})"
+        for label, va, vb in (("u_x", pa["u"][0], pb["u"][0]), ("u_y", pa["u"][1], pb["u"][1]),
+                              ("phi", pa["phi"], pb["phi"])):
+            lines.append(f"{pt:>12} {label:>8} {va:>24.16e} {vb:>24.16e} "
+                         f"{abs(va - vb) / max(abs(vb), 1e-300):>10.1e}")
+    return "\n".join(lines)

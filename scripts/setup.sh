@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# Install the Debian 12 packages piezocontact needs (only those missing),
+# then configure and build it in build/. Safe to run again: it does only
+# what is left to do.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+PACKAGES=(
+  # FEniCSx 0.5 stack: dolfinx C++ and Python, ffcx, UFL, basix, PETSc
+  libdolfinx-dev python3-dolfinx python3-ffcx python3-ufl python3-basix
+  python3-petsc4py python3-mpi4py python3-numpy
+  # build: compilers, CMake, pkg-config (PETSc), JSON for the C++ config
+  cmake g++ make pkg-config nlohmann-json3-dev libgtest-dev
+  # MPI launcher; OpenBLAS makes MUMPS' LU ~3x faster than reference BLAS
+  openmpi-bin libopenblas0
+  # tests and pictures
+  python3-pytest python3-matplotlib
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" \
+    || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "setup: installing ${missing[*]}"
+  SUDO=""
+  [ "$(id -u)" -eq 0 ] || SUDO="sudo"
+  $SUDO apt-get update -q
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q --no-install-recommends \
+    "${missing[@]}"
+fi
+
+# Debian's packages live in /usr/bin/python3, not in a pyenv python3 on PATH
+cmake -B build -S . -DCMAKE_BUILD_TYPE=Release -DPython3_EXECUTABLE=/usr/bin/python3 >/dev/null
+cmake --build build -j"$(nproc)"
