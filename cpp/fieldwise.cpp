@@ -68,7 +68,7 @@ bool FieldwiseConvergence::check(std::span<const double> x,
     const double si = std::sqrt(global[3 * f]), r = std::sqrt(global[3 * f + 1]),
                  s = std::sqrt(global[3 * f + 2]);
     const double rel = s > 0 ? r / s
-                             : (r == 0 ? 0.0 : std::numeric_limits<double>::infinity());
+                             : (r == 0 ? 0.0 : std::numeric_limits<double>::quiet_NaN());
     entry[name] = {si, r, rel};
     ok = ok and (r <= _rtol * s + _atol * s_total);
     ++f;

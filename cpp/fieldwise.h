@@ -21,7 +21,7 @@ struct FieldNorms
 {
   double residual;        ///< ||F_f||_2 in SI units
   double scaled_residual; ///< r_f
-  double relative;        ///< r_f / s_f
+  double relative;        ///< r_f / s_f; NaN (null in JSON) while s_f = 0 < r_f
 };
 
 class FieldwiseConvergence

@@ -5,6 +5,7 @@
 #include "problem.h"
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <dolfinx/fem/assembler.h>
 #include <dolfinx/fem/petsc.h>
@@ -90,7 +91,10 @@ json fields_json(const std::map<std::string, FieldNorms>& norms,
 {
   json out = json::object();
   for (const char* f : {"u", "phi"})
-    out[f] = norms.at(f).*member;
+  {
+    const double v = norms.at(f).*member;
+    out[f] = std::isnan(v) ? json(nullptr) : json(v); // undefined while x_f = 0
+  }
   return out;
 }
 
@@ -125,16 +129,31 @@ json step_record(const Problem& problem, const Probes& probes,
   return step;
 }
 
+std::string sci(double v)
+{
+  if (std::isnan(v))
+    return "undefined";
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), "%.3e", v);
+  return buf;
+}
+
 void print_progress(int n, int N, const json& step)
 {
   const json& r = step["relative_residuals"];
-  char gap[32] = "n/a";
-  if (!step["max_penetration"].is_null())
-    std::snprintf(gap, sizeof(gap), "%.3e", step["max_penetration"].get<double>());
-  std::printf("[cpp] step %4d/%d  t = %.4g  newton %d  rel. residual u %.1e phi %.1e"
+  auto e = [](const json& v, int digits, const char* missing)
+  {
+    if (v.is_null())
+      return std::string(missing);
+    char buf[32];
+    std::snprintf(buf, sizeof(buf), "%.*e", digits, v.get<double>());
+    return std::string(buf);
+  };
+  std::printf("[cpp] step %4d/%d  t = %.4g  newton %d  rel. residual u %s phi %s"
               "  max(u.nu - g) = %s\n",
               n, N, step["t"].get<double>(), step["newton_iterations"].get<int>(),
-              r["u"].get<double>(), r["phi"].get<double>(), gap);
+              e(r["u"], 1, "undefined").c_str(), e(r["phi"], 1, "undefined").c_str(),
+              e(step["max_penetration"], 3, "n/a").c_str());
   std::fflush(stdout);
 }
 } // namespace
@@ -228,8 +247,9 @@ json run(const json& cfg, const std::filesystem::path& out_dir, MPI_Comm comm,
       char msg[256];
       std::snprintf(msg, sizeof(msg),
                     "Newton did not converge at t = %g (step %d) in %d iterations: "
-                    "relative residuals u = %.3e, phi = %.3e",
-                    t, n, its, last.at("u").relative, last.at("phi").relative);
+                    "relative residuals u = %s, phi = %s",
+                    t, n, its, sci(last.at("u").relative).c_str(),
+                    sci(last.at("phi").relative).c_str());
       VecDestroy(&x);
       throw NewtonFailure(msg);
     }

@@ -52,7 +52,8 @@ class FieldwiseConvergence:
         for (si, r, s), f in zip(norms, FIELDS):
             entry["residual"][f] = float(si)
             entry["scaled_residual"][f] = float(r)
-            entry["relative"][f] = float(r / s) if s > 0 else (0.0 if r == 0 else float("inf"))
+            # undefined (null in summary.json) while a field is still zero
+            entry["relative"][f] = float(r / s) if s > 0 else (0.0 if r == 0 else None)
             ok &= bool(r <= self.rtol * s + self.atol * s_total)
         self.history.append(entry)
         return ok

@@ -6,6 +6,7 @@
 """
 
 import json
+import math
 import os
 from pathlib import Path
 
@@ -13,11 +14,22 @@ import numpy as np
 from dolfinx import fem, io
 
 
+def _finite(obj):
+    """NaN/inf become null, as the C++ writer does: summary.json stays JSON."""
+    if isinstance(obj, float):
+        return obj if math.isfinite(obj) else None
+    if isinstance(obj, dict):
+        return {k: _finite(v) for k, v in obj.items()}
+    if isinstance(obj, list):
+        return [_finite(v) for v in obj]
+    return obj
+
+
 def write_json_atomic(path, obj):
     """Write-then-rename: an interrupted run never leaves a half-written file."""
     path = Path(path)
     tmp = path.with_name("." + path.name + ".tmp")
-    tmp.write_text(json.dumps(obj, indent=1))
+    tmp.write_text(json.dumps(_finite(obj), indent=1, allow_nan=False))
     os.replace(tmp, path)
 
 

@@ -102,8 +102,8 @@ def run(cfg, out_dir, comm, progress=True, source="config"):
         if not converged:
             last = monitor.history[-1]["relative"]
             raise NewtonFailure(f"Newton did not converge at t = {t:g} (step {n}) in {its} "
-                                f"iterations: relative residuals u = {last['u']:.3e}, "
-                                f"phi = {last['phi']:.3e}")
+                                f"iterations: relative residuals u = {_e(last['u'])}, "
+                                f"phi = {_e(last['phi'])}")
         problem.update_fields()
         step = _step_record(problem, probes, contact, monitor, t, its)
         x_prev2[:] = x_prev.x.array
@@ -137,9 +137,13 @@ def _step_record(problem, probes, contact, monitor, t, its):
     }
 
 
+def _e(value, digits=3, missing="undefined"):
+    return missing if value is None else f"{value:.{digits}e}"
+
+
 def _progress(n, N, step):
     r = step["relative_residuals"]
     print(f"[python] step {n:4d}/{N}  t = {step['t']:.4g}  newton {step['newton_iterations']}"
-          f"  rel. residual u {r['u']:.1e} phi {r['phi']:.1e}"
-          f"  max(u.nu - g) = {step['max_penetration']:.3e}", flush=True)
+          f"  rel. residual u {_e(r['u'], 1)} phi {_e(r['phi'], 1)}"
+          f"  max(u.nu - g) = {_e(step['max_penetration'], 3, 'n/a')}", flush=True)
     sys.stdout.flush()
