@@ -249,13 +249,17 @@ void check_semantics(const json& cfg, const std::string& source)
 {
   const json& mesh = cfg["mesh"];
   const std::string type = mesh["type"];
-  const std::vector<std::string> needed
-      = type == "unit_square" ? std::vector<std::string>{"n"}
-                              : std::vector<std::string>{"path"};
+  const std::map<std::string, std::vector<std::string>> needed_by_type
+      = {{"unit_square", {"n"}}, {"gmsh", {"geometry", "size"}}, {"xdmf", {"path"}}};
+  const auto& needed = needed_by_type.at(type);
   for (const auto& k : needed)
     if (!mesh.contains(k))
       fail(source, "mesh." + k + ": missing required key for mesh.type \""
                        + type + "\"");
+  for (const auto& [k, _] : mesh.items())
+    if (k != "type" and k != "diagonal"
+        and std::find(needed.begin(), needed.end(), k) == needed.end())
+      fail(source, "mesh." + k + ": not used with mesh.type \"" + type + "\"");
 
   const json& mat = cfg["material"];
   check_spd(mat["permittivity"].get<Matrix>(), "material.permittivity", source,

@@ -2,19 +2,22 @@
 
 #include <cmath>
 #include <limits>
+#include <set>
 
 namespace piezo
 {
 FieldwiseConvergence::FieldwiseConvergence(
     const std::map<std::string, std::vector<std::int32_t>>& field_dofs,
-    std::int32_t num_owned, double rtol, double atol, MPI_Comm comm)
+    const std::vector<std::int32_t>& bc_dofs, std::int32_t num_owned,
+    double rtol, double atol, MPI_Comm comm)
     : _rtol(rtol), _atol(atol), _comm(comm)
 {
+  const std::set<std::int32_t> constrained(bc_dofs.begin(), bc_dofs.end());
   for (const auto& [name, dofs] : field_dofs)
   {
     _dofs[name] = {}; // every rank holds every field, owned dofs or not
     for (auto d : dofs)
-      if (d < num_owned)
+      if (d < num_owned and !constrained.contains(d))
         _dofs[name].push_back(d);
   }
 }

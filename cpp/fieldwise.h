@@ -6,6 +6,9 @@
 // where both blocks are O(1). Per field f:
 //   r_f = ||D^-1/2 F||_f,  s_f = ||D^1/2 x||_f,
 // converged when r_f <= rtol s_f + atol s for every f, s = ||(s_u, s_phi)||.
+// Dirichlet dofs are left out: their rows hold x - g under an arbitrary unit
+// diagonal, so a 20 V electrode would otherwise weigh 20 in s_phi where a
+// free dof weighs ~1e-4.
 #pragma once
 
 #include <map>
@@ -27,8 +30,10 @@ struct FieldNorms
 class FieldwiseConvergence
 {
 public:
-  /// field_dofs: field name -> local W-dofs (ghosts are filtered out)
+  /// field_dofs: field name -> local W-dofs (ghosts are filtered out);
+  /// bc_dofs: W-dofs of Dirichlet conditions, left out
   FieldwiseConvergence(const std::map<std::string, std::vector<std::int32_t>>& field_dofs,
+                       const std::vector<std::int32_t>& bc_dofs,
                        std::int32_t num_owned, double rtol, double atol,
                        MPI_Comm comm);
 

@@ -5,66 +5,18 @@
 #include <algorithm>
 #include <basix/finite-element.h>
 #include <dolfinx/fem/utils.h>
-#include <dolfinx/mesh/generation.h>
-#include <dolfinx/mesh/utils.h>
 #include <numeric>
 
 namespace piezo
 {
-namespace
-{
-// Built-in unit square: boundary name -> (axis, coordinate)
-const std::map<std::string, std::pair<int, double>> unit_square_sides
-    = {{"bottom", {1, 0.0}}, {"left", {0, 0.0}}, {"right", {0, 1.0}}, {"top", {1, 1.0}}};
-
-mesh::DiagonalType diagonal_type(const std::string& name)
-{
-  const std::map<std::string, mesh::DiagonalType> types
-      = {{"right", mesh::DiagonalType::right},
-         {"left", mesh::DiagonalType::left},
-         {"crossed", mesh::DiagonalType::crossed},
-         {"left_right", mesh::DiagonalType::left_right},
-         {"right_left", mesh::DiagonalType::right_left}};
-  return types.at(name);
-}
-} // namespace
-
-Problem::Problem(const json& cfg_, MPI_Comm comm_, const std::string& source)
+Problem::Problem(const json& cfg_, MPI_Comm comm_, const std::string& source,
+                 const std::optional<std::filesystem::path>& mesh_file)
     : cfg(cfg_), comm(comm_)
 {
-  // Mesh and facet tags: tag = 1 + index of the name in sorted order
-  const std::size_t n = cfg["mesh"]["n"].get<std::size_t>();
-  mesh = std::make_shared<mesh::Mesh>(mesh::create_rectangle(
-      comm, {{{0.0, 0.0}, {1.0, 1.0}}}, {n, n}, mesh::CellType::triangle,
-      mesh::GhostMode::shared_facet,
-      diagonal_type(cfg["mesh"]["diagonal"].get<std::string>())));
-  std::vector<std::pair<std::int32_t, std::int32_t>> tagged;
-  int slot = 0;
-  for (const auto& [name, side] : unit_square_sides) // std::map: sorted names
-  {
-    const auto [axis, c] = side;
-    const auto facets = mesh::locate_entities_boundary(
-        *mesh, 1,
-        [axis = axis, c = c](const xt::xtensor<double, 2>& X)
-        {
-          xt::xtensor<bool, 1> on(std::array<std::size_t, 1>{X.shape(1)});
-          for (std::size_t i = 0; i < X.shape(1); ++i)
-            on(i) = std::abs(X(axis, i) - c) <= 1e-8 + 1e-5 * std::abs(c);
-          return on;
-        });
-    tag_of[name] = ++slot;
-    for (auto f : facets)
-      tagged.emplace_back(f, slot);
-  }
-  std::sort(tagged.begin(), tagged.end()); // MeshTags needs sorted indices
-  std::vector<std::int32_t> indices, values;
-  for (auto [f, v] : tagged)
-  {
-    indices.push_back(f);
-    values.push_back(v);
-  }
-  facet_tags = std::make_shared<mesh::MeshTags<std::int32_t>>(
-      mesh, 1, std::move(indices), std::move(values));
+  NamedMesh named = build_mesh(cfg, comm, mesh_file, source);
+  mesh = named.mesh;
+  facet_tags = named.facet_tags;
+  tag_of = named.tag_of;
 
   if (static_cast<int>(tag_of.size()) > forms::max_boundaries)
     throw ConfigError(source + ": mesh: " + std::to_string(tag_of.size())
@@ -205,6 +157,7 @@ void Problem::create_bcs()
       for (std::size_t i = 0; i < values.size(); ++i)
         values[i] = bc["displacement"][i % 2].get<double>();
       auto dofs = fem::locate_dofs_topological({*W->sub({0}), *V_u}, 1, facets);
+      bc_dofs.insert(bc_dofs.end(), dofs[0].begin(), dofs[0].end());
       bcs.push_back(std::make_shared<fem::DirichletBC<double>>(g, std::move(dofs), W->sub({0})));
       std::array<std::vector<std::int32_t>, 2> comp;
       for (int i = 0; i < 2; ++i)
@@ -221,6 +174,7 @@ void Problem::create_bcs()
       std::fill(g->x()->mutable_array().begin(), g->x()->mutable_array().end(),
                 bc["potential"].get<double>());
       auto dofs = fem::locate_dofs_topological({*W->sub({1}), *V_phi}, 1, facets);
+      bc_dofs.insert(bc_dofs.end(), dofs[0].begin(), dofs[0].end());
       bcs.push_back(std::make_shared<fem::DirichletBC<double>>(g, std::move(dofs), W->sub({1})));
     }
   }

@@ -1,10 +1,11 @@
-// The discrete problem: mesh, named boundaries, the mixed P1 space, the
-// runtime Constants and the ffcx-compiled forms of forms/piezo_contact.ufl.
+// The discrete problem: the mixed P1 space on the mesh, the runtime
+// Constants and the ffcx-compiled forms of forms/piezo_contact.ufl, the BCs.
 // Mirrors demos/piezocontact/problem.py; no term of the weak form is written
 // here.
 #pragma once
 
 #include "config.h"
+#include "mesh.h"
 
 #include <array>
 #include <dolfinx/fem/Constant.h>
@@ -27,7 +28,8 @@ using namespace dolfinx;
 
 struct Problem
 {
-  Problem(const json& cfg, MPI_Comm comm, const std::string& source);
+  Problem(const json& cfg, MPI_Comm comm, const std::string& source,
+          const std::optional<std::filesystem::path>& mesh_file);
 
   /// Copy the mixed solution x into the collapsed u and phi
   void update_fields();
@@ -51,6 +53,7 @@ struct Problem
   std::shared_ptr<fem::Expression<double>> D_expr, stress_expr;
 
   std::vector<std::shared_ptr<const fem::DirichletBC<double>>> bcs;
+  std::vector<std::int32_t> bc_dofs; ///< W-dofs of every Dirichlet condition
   /// clamped boundary -> W-dofs of its u_x and u_y components
   std::map<std::string, std::array<std::vector<std::int32_t>, 2>> clamped_dofs;
 

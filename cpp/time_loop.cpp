@@ -166,14 +166,15 @@ json run(const json& cfg, const std::filesystem::path& out_dir, MPI_Comm comm,
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
 
-  Problem problem(cfg, comm, source);
+  const auto mesh_file = prepare_mesh(cfg, source, out_dir, comm);
+  Problem problem(cfg, comm, source, mesh_file);
   Probes probes(problem, cfg["probes"], source);
   ContactGeometry contact(problem);
   const json& newton_cfg = cfg["solver"]["newton"];
   const auto& imap = *problem.W->dofmap()->index_map;
   const int bs = problem.W->dofmap()->index_map_bs();
   FieldwiseConvergence monitor({{"u", problem.u_dofs}, {"phi", problem.phi_dofs}},
-                               imap.size_local() * bs, newton_cfg["rtol"].get<double>(),
+                               problem.bc_dofs, imap.size_local() * bs, newton_cfg["rtol"].get<double>(),
                                newton_cfg["atol"].get<double>(), comm);
   System system(problem, monitor);
 
@@ -215,6 +216,9 @@ json run(const json& cfg, const std::filesystem::path& out_dir, MPI_Comm comm,
                   {"dofs", imap.size_global() * bs},
                   {"mpi_size", size},
                   {"config", cfg},
+                  {"mesh_file", mesh_file ? json(mesh_file->string()) : json(nullptr)},
+                  {"boundary_lengths",
+                   boundary_lengths({problem.mesh, problem.facet_tags, problem.tag_of}, comm)},
                   {"steps", json::array()},
                   {"timing", json::object()}};
 

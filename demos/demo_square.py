@@ -66,8 +66,7 @@ def report(summaries, out_dir):
     cpp, py = summaries["cpp"], summaries["python"]
     print()
     print(compare.table(cpp, py))
-    fields = compare.field_differences(Path(out_dir) / "cpp", Path(out_dir) / "python",
-                                       cpp["config"])
+    fields = compare.field_differences(Path(out_dir) / "cpp", Path(out_dir) / "python", py)
     final = fields[max(fields)]
     print(f"\nrelative L2 difference at t = {cpp['steps'][-1]['t']:g}: "
           f"u {final['u']:.2e}, phi {final['phi']:.2e}")

@@ -79,9 +79,15 @@ def residual(x, x_prev, y, ds, data):
         traction = ufl.as_vector([data["fF"][s, 0], data["fF"][s, 1]])
         F -= ufl.inner(traction, w) * ds(s + 1)
         F -= data["qF"][s] * psi * ds(s + 1)
-        # Normal compliance on the boundaries switched on as contact (chi=1)
-        F += data["chi"][s] * contact_pressure(u, n, data) * ufl.dot(w, n) * ds(s + 1)
-    return F
+    return F + contact_term(u, w, n, ds, data)
+
+
+def contact_term(u, w, n, ds, data):
+    """j(u, w) of (2.18): normal compliance on the boundaries switched on as
+    contact (chi = 1). Assembled alone, minus it is the nodal force of the
+    foundation on the body."""
+    return sum(data["chi"][s] * contact_pressure(u, n, data) * ufl.dot(w, n) * ds(s + 1)
+               for s in range(MAX_BOUNDARIES))
 
 
 def jacobian(F, x, dx_trial):

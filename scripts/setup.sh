@@ -9,6 +9,8 @@ PACKAGES=(
   # FEniCSx 0.5 stack: dolfinx C++ and Python, ffcx, UFL, basix, PETSc
   libdolfinx-dev python3-dolfinx python3-ffcx python3-ufl python3-basix
   python3-petsc4py python3-mpi4py python3-numpy
+  # meshes: gmsh and its Python API (example 2)
+  python3-gmsh
   # build: compilers, CMake, pkg-config (PETSc), JSON for the C++ config
   cmake g++ make pkg-config nlohmann-json3-dev libgtest-dev
   # MPI launcher; OpenBLAS makes MUMPS' LU ~3x faster than reference BLAS

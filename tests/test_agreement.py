@@ -21,7 +21,7 @@ def test_probes_agree_every_step(small_runs):
 
 def test_fields_agree_every_step(small_runs):
     (cpp, cpp_dir), (_, py_dir) = small_runs["cpp"], small_runs["python"]
-    diffs = compare.field_differences(cpp_dir, py_dir, cpp["config"])
+    diffs = compare.field_differences(cpp_dir, py_dir, small_runs["python"][0])
     assert sorted(diffs) == list(range(1, 9))
     for step, d in diffs.items():
         assert d["u"] < TOL and d["phi"] < TOL, (step, d)
@@ -46,7 +46,7 @@ def test_field_comparison_detects_a_difference(small_runs, tmp_path):
     rows = np.load(tmp_path / "nodal" / "phi_0008.npy")
     rows[len(rows) // 2, 2] *= 1 + 1e-6
     np.save(tmp_path / "nodal" / "phi_0008.npy", rows)
-    d = compare.field_differences(tmp_path, cpp_dir, cpp["config"])[8]
+    d = compare.field_differences(tmp_path, cpp_dir, cpp)[8]
     assert d["u"] == 0.0 and 1e-9 < d["phi"] < 1e-6
 
 
@@ -58,5 +58,5 @@ def test_mpi_matches_serial(solver, small_runs, tmp_path):
     assert par["mpi_size"] == 2 and par["dofs"] == serial["dofs"]
     for d in compare.probe_differences(par, serial):
         assert d["u"] < TOL and d["phi"] < TOL, d
-    for step, d in compare.field_differences(tmp_path, serial_dir, serial["config"]).items():
+    for step, d in compare.field_differences(tmp_path, serial_dir, serial).items():
         assert d["u"] < TOL and d["phi"] < TOL, (step, d)

@@ -14,7 +14,7 @@ import ufl
 from dolfinx import fem
 from mpi4py import MPI
 
-from .problem import build_mesh
+from . import meshing
 
 
 def load_summary(out_dir):
@@ -45,8 +45,8 @@ def probe_differences(run, ref):
 class FieldComparer:
     """P1 functions on the config's mesh filled from nodal files."""
 
-    def __init__(self, cfg, comm=MPI.COMM_SELF):
-        self.mesh, _, _ = build_mesh(cfg, comm)
+    def __init__(self, cfg, mesh_file=None, comm=MPI.COMM_SELF):
+        self.mesh, _, _ = meshing.build(cfg, comm, mesh_file)
         self.V = {"u": fem.VectorFunctionSpace(self.mesh, ("Lagrange", 1)),
                   "phi": fem.FunctionSpace(self.mesh, ("Lagrange", 1))}
         self._order = {f: self._lexorder(V.tabulate_dof_coordinates()[:, :2])
@@ -78,9 +78,10 @@ class FieldComparer:
         return float(np.sqrt(d / n)) if n > 0 else float(np.sqrt(d))
 
 
-def field_differences(dir_a, dir_b, cfg):
-    """{step: {"u": rel L2, "phi": rel L2}} for every step both runs wrote."""
-    comparer = FieldComparer(cfg)
+def field_differences(dir_a, dir_b, summary):
+    """{step: {"u": rel L2, "phi": rel L2}} for every step both runs wrote,
+    on the mesh of run `summary` (the reference's)."""
+    comparer = FieldComparer(summary["config"], summary.get("mesh_file"))
     out = {}
     for fa in sorted((Path(dir_a) / "nodal").glob("u_*.npy")):
         step = fa.stem.split("_")[1]

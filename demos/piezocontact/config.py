@@ -163,11 +163,14 @@ def _join(path, key):
 def _check_semantics(cfg, source):
     """Rules that span keys (the same list as cpp/config.cpp)."""
     mesh = cfg["mesh"]
-    needed = {"unit_square": ["n"], "file": ["path"]}[mesh["type"]]
+    needed = {"unit_square": ["n"], "gmsh": ["geometry", "size"], "xdmf": ["path"]}[mesh["type"]]
     for k in needed:
         if k not in mesh:
             raise ConfigError(f"{source}: mesh.{k}: missing required key for mesh.type "
                               f"\"{mesh['type']}\"")
+    for k in mesh:
+        if k not in needed + ["type", "diagonal"]:
+            raise ConfigError(f"{source}: mesh.{k}: not used with mesh.type \"{mesh['type']}\"")
     mat = cfg["material"]
     _check_spd(mat["permittivity"], "material.permittivity", source,
                "permittivity must be positive definite (2.14c); the paper's Table 2 "

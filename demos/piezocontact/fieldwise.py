@@ -8,6 +8,9 @@ blocks are O(1) (the coupling becomes e/sqrt(B beta) ~ 0.4). Per field f:
     s_f = ||D^1/2 x||_f    (scaled solution, the same units as r_f)
 and the step has converged when, for every field, r_f <= rtol s_f + atol s,
 with s = sqrt(s_u^2 + s_phi^2). D comes from the latest assembled Jacobian.
+Dirichlet dofs are left out: their rows hold x - g (zero once the predictor
+has the BC values) under an arbitrary unit diagonal, so a 20 V electrode
+would otherwise weigh 20 in s_phi where a free dof weighs ~1e-4.
 The SI norms ||F_u|| (N/m) and ||F_phi|| (C/m) are reported alongside.
 """
 
@@ -18,9 +21,11 @@ FIELDS = ("u", "phi")
 
 
 class FieldwiseConvergence:
-    def __init__(self, W, field_dofs, rtol, atol, comm):
+    def __init__(self, W, field_dofs, bc_dofs, rtol, atol, comm):
         owned = W.dofmap.index_map.size_local * W.dofmap.index_map_bs
-        self.dofs = {f: np.asarray(d)[np.asarray(d) < owned] for f, d in field_dofs.items()}
+        constrained = np.concatenate([np.asarray(d) for d in bc_dofs] or [[]])
+        self.dofs = {f: np.setdiff1d(np.asarray(d)[np.asarray(d) < owned], constrained)
+                     for f, d in field_dofs.items()}
         self.rtol, self.atol, self.comm = rtol, atol, comm
         self.sqrt_d = None
         self.history = []

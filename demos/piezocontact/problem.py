@@ -1,5 +1,5 @@
-"""The discrete problem in dolfinx Python: mesh, named boundaries, the mixed
-P1 space, the runtime Constants and the forms of forms/piezo_forms.py.
+"""The discrete problem in dolfinx Python: the mixed P1 space on the mesh,
+the runtime Constants and the forms of forms/piezo_forms.py, the BCs.
 Mirrors cpp/problem.cpp; neither writes a term of the weak form itself."""
 
 import sys
@@ -8,44 +8,42 @@ from pathlib import Path
 import numpy as np
 import ufl
 from dolfinx import fem
-from dolfinx import mesh as dmesh
 
+from . import meshing
 from .config import ConfigError
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "forms"))
 import piezo_forms as pf  # noqa: E402
 
-# Built-in unit square: boundary name -> (axis, coordinate)
-UNIT_SQUARE_SIDES = {"left": (0, 0.0), "right": (0, 1.0), "bottom": (1, 0.0), "top": (1, 1.0)}
-
-
-def build_mesh(cfg, comm):
-    """Mesh and facet tags; the tag of a named boundary is 1 + its index in
-    sorted name order (the slot of the per-boundary constant arrays)."""
-    m = cfg["mesh"]
-    msh = dmesh.create_unit_square(comm, m["n"], m["n"], dmesh.CellType.triangle,
-                                   ghost_mode=dmesh.GhostMode.shared_facet,
-                                   diagonal=getattr(dmesh.DiagonalType, m["diagonal"]))
-    names = sorted(UNIT_SQUARE_SIDES)
-    facets, values = [], []
-    for slot, name in enumerate(names):
-        axis, c = UNIT_SQUARE_SIDES[name]
-        f = dmesh.locate_entities_boundary(msh, 1, lambda x: np.isclose(x[axis], c))
-        facets.append(f)
-        values.append(np.full(len(f), slot + 1, dtype=np.int32))
-    facets, values = np.concatenate(facets), np.concatenate(values)
-    order = np.argsort(facets)
-    tags = dmesh.meshtags(msh, 1, facets[order], values[order])
-    return msh, tags, {name: slot + 1 for slot, name in enumerate(names)}
+def make_constants(msh, cfg, tag_of):
+    """The runtime Constants of the forms, filled from the config."""
+    d = {name: fem.Constant(msh, np.zeros(shape, dtype=np.float64))
+         for name, shape in pf.constant_shapes().items()}
+    mat = cfg["material"]
+    d["Bv"].value[:] = mat["elastic"]
+    d["Av"].value[:] = mat["viscosity"]
+    d["e"].value[:] = mat["piezoelectric"]
+    d["beta"].value[:] = mat["permittivity"]
+    d["c_p"].value = cfg["contact"]["c_p"]
+    d["g"].value = cfg["contact"]["gap"]
+    d["k"].value = cfg["time"]["T"] / cfg["time"]["steps"]
+    d["f0"].value[:] = cfg["loads"]["body_force"]
+    d["q0"].value = cfg["loads"]["charge_density"]
+    for name, bc in cfg["boundaries"].items():
+        s = tag_of[name] - 1
+        d["fF"].value[s, :] = bc.get("traction", [0.0, 0.0])
+        d["qF"].value[s] = bc.get("surface_charge", 0.0)
+        d["chi"].value[s] = 1.0 if bc.get("contact", False) else 0.0
+    return d
 
 
 class Problem:
     """Everything one run needs that depends on the config."""
 
-    def __init__(self, cfg, comm, source="config"):
+    def __init__(self, cfg, comm, source="config", mesh_file=None):
         self.cfg = cfg
         self.comm = comm
-        self.mesh, self.facet_tags, self.tag_of = build_mesh(cfg, comm)
+        self.mesh, self.facet_tags, self.tag_of = meshing.build(cfg, comm, mesh_file, source)
         if len(self.tag_of) > pf.MAX_BOUNDARIES:
             raise ConfigError(f"{source}: mesh: {len(self.tag_of)} named boundaries, "
                               f"the forms support {pf.MAX_BOUNDARIES}")
@@ -61,9 +59,7 @@ class Problem:
         self.x = fem.Function(self.W, name="x")
         self.x_prev = fem.Function(self.W, name="x_prev")
 
-        self.data = {name: fem.Constant(self.mesh, np.zeros(shape, dtype=np.float64))
-                     for name, shape in pf.constant_shapes().items()}
-        self._set_constants()
+        self.data = make_constants(self.mesh, cfg, self.tag_of)
 
         ds = ufl.Measure("ds", domain=self.mesh, subdomain_data=self.facet_tags)
         self.F_ufl = pf.residual(self.x, self.x_prev, ufl.TestFunction(self.W), ds, self.data)
@@ -88,31 +84,10 @@ class Problem:
         self.D_expr = fem.Expression(pf.electric_displacement(u, phi, self.data), midpoint)
         self.stress_expr = fem.Expression(pf.stress_voigt(u, u_prev, phi, self.data), midpoint)
 
-    def _set_constants(self):
-        cfg, d = self.cfg, self.data
-        mat = cfg["material"]
-        d["Bv"].value[:] = mat["elastic"]
-        d["Av"].value[:] = mat["viscosity"]
-        d["e"].value[:] = mat["piezoelectric"]
-        d["beta"].value[:] = mat["permittivity"]
-        d["c_p"].value = cfg["contact"]["c_p"]
-        d["g"].value = cfg["contact"]["gap"]
-        d["k"].value = cfg["time"]["T"] / cfg["time"]["steps"]
-        d["f0"].value[:] = cfg["loads"]["body_force"]
-        d["q0"].value = cfg["loads"]["charge_density"]
-        for name, bc in cfg["boundaries"].items():
-            s = self.tag_of[name] - 1
-            d["fF"].value[s, :] = bc.get("traction", [0.0, 0.0])
-            d["qF"].value[s] = bc.get("surface_charge", 0.0)
-            d["chi"].value[s] = 1.0 if bc.get("contact", False) else 0.0
-
     def update_fields(self):
         """Copy the mixed solution into the collapsed u and phi."""
         self.u.x.array[:] = self.x.x.array[self.u_dofs]
         self.phi.x.array[:] = self.x.x.array[self.phi_dofs]
-
-    def set_time_step(self, k):
-        self.data["k"].value = k
 
     def boundary_facets(self, name):
         return self.facet_tags.indices[self.facet_tags.values == self.tag_of[name]]
@@ -120,8 +95,9 @@ class Problem:
     def _dirichlet_bcs(self):
         """u and phi Dirichlet conditions on the collapsed sub-spaces (a
         Constant on a vector sub-space of a mixed space is not supported in
-        0.5.2), and per clamped boundary the W-dofs of each u component."""
-        bcs, clamped = [], {}
+        0.5.2), per clamped boundary the W-dofs of each u component, and in
+        self.bc_dofs the W-dofs of every condition."""
+        bcs, clamped, self.bc_dofs = [], {}, []
         for name, bc in sorted(self.cfg["boundaries"].items()):
             facets = self.boundary_facets(name)
             if "displacement" in bc:
@@ -129,6 +105,7 @@ class Problem:
                 g.x.array.reshape(-1, 2)[:] = bc["displacement"]
                 dofs = fem.locate_dofs_topological((self.W.sub(0), self.V_u), 1, facets)
                 bcs.append(fem.dirichletbc(g, dofs, self.W.sub(0)))
+                self.bc_dofs.append(dofs[0])
                 clamped[name] = [
                     fem.locate_dofs_topological(
                         (self.W.sub(0).sub(i), self.V_u.sub(i).collapse()[0]), 1, facets)[0]
@@ -138,4 +115,5 @@ class Problem:
                 g.x.array[:] = bc["potential"]
                 dofs = fem.locate_dofs_topological((self.W.sub(1), self.V_phi), 1, facets)
                 bcs.append(fem.dirichletbc(g, dofs, self.W.sub(1)))
+                self.bc_dofs.append(dofs[0])
         return bcs, clamped

@@ -11,7 +11,7 @@ from dolfinx.fem.petsc import NonlinearProblem
 from dolfinx.nls.petsc import NewtonSolver
 from petsc4py import PETSc
 
-from . import diagnostics, output
+from . import diagnostics, meshing, output
 from .fieldwise import FieldwiseConvergence
 from .problem import Problem
 
@@ -61,12 +61,13 @@ def _set_petsc_options(ksp, options):
 def run(cfg, out_dir, comm, progress=True, source="config"):
     """Run the time loop; write DIR/summary.json etc.; return the summary."""
     t_start = time.perf_counter()
-    problem = Problem(cfg, comm, source)
+    mesh_file = meshing.prepare(cfg, source, out_dir, comm)
+    problem = Problem(cfg, comm, source, mesh_file)
     probes = diagnostics.Probes(problem, cfg["probes"], source)
     contact = diagnostics.ContactGeometry(problem)
     newton_cfg = cfg["solver"]["newton"]
     monitor = FieldwiseConvergence(problem.W, {"u": problem.u_dofs, "phi": problem.phi_dofs},
-                                   newton_cfg["rtol"], newton_cfg["atol"], comm)
+                                   problem.bc_dofs, newton_cfg["rtol"], newton_cfg["atol"], comm)
     nl = _Problem(problem, monitor)
     newton = NewtonSolver(comm, nl)
     newton.rtol = 0.0                 # convergence is decided by the monitor
@@ -79,7 +80,10 @@ def run(cfg, out_dir, comm, progress=True, source="config"):
     writer = output.Writer(problem, out_dir, cfg)
     W_map = problem.W.dofmap.index_map
     summary = {"solver": "python", "dofs": W_map.size_global * problem.W.dofmap.index_map_bs,
-               "mpi_size": comm.size, "config": cfg, "steps": [], "timing": {}}
+               "mpi_size": comm.size, "config": cfg, "mesh_file": mesh_file,
+               "boundary_lengths": meshing.boundary_lengths(problem.mesh, problem.facet_tags,
+                                                            problem.tag_of, comm),
+               "steps": [], "timing": {}}
 
     T, N = cfg["time"]["T"], cfg["time"]["steps"]
     k = T / N

@@ -1,0 +1,77 @@
+"""Mesh a polygon with gmsh and write what both solvers read:
+  NAME.xdmf (+ .h5)       the triangle mesh ("mesh") and facet tags ("facets")
+  NAME.boundaries.json    {"boundaries": {name: facet tag}, ...}
+Each edge of the polygon belongs to a named boundary (a gmsh physical group);
+dolfinx 0.5 has no gmsh reader in C++, so this is the exchange format."""
+
+import argparse
+import json
+import sys
+from pathlib import Path
+
+import gmsh
+from dolfinx import io
+from dolfinx.io import gmshio
+from mpi4py import MPI
+
+
+def build_polygon(points, edge_names, size):
+    """Add the polygon to the current gmsh model and mesh it. edge_names[i]
+    names the edge from points[i] to points[i+1] (closing the loop)."""
+    geo = gmsh.model.geo
+    tags = [geo.addPoint(x, y, 0.0, size) for x, y in points]
+    lines = [geo.addLine(tags[i], tags[(i + 1) % len(tags)]) for i in range(len(tags))]
+    surface = geo.addPlaneSurface([geo.addCurveLoop(lines)])
+    geo.synchronize()
+    names = sorted(set(edge_names))
+    for tag, name in enumerate(names, start=1):
+        members = [line for line, n in zip(lines, edge_names) if n == name]
+        gmsh.model.addPhysicalGroup(1, members, tag)
+        gmsh.model.setPhysicalName(1, tag, name)
+    gmsh.model.addPhysicalGroup(2, [surface], 1)
+    gmsh.model.setPhysicalName(2, 1, "body")
+    gmsh.model.mesh.generate(2)
+    return {name: tag for tag, name in enumerate(names, start=1)}
+
+
+def write_mesh(points, edge_names, size, output, comm=MPI.COMM_WORLD):
+    """Generate on rank 0, distribute, write XDMF + the names sidecar."""
+    output = Path(output)
+    boundaries = None
+    gmsh.initialize()
+    gmsh.option.setNumber("General.Terminal", 0)
+    try:
+        if comm.rank == 0:
+            gmsh.model.add(output.stem)
+            boundaries = build_polygon(points, edge_names, size)
+        mesh, _, facet_tags = gmshio.model_to_mesh(gmsh.model, comm, 0, gdim=2)
+    finally:
+        gmsh.finalize()
+    boundaries = comm.bcast(boundaries, root=0)
+    mesh.name = "mesh"
+    facet_tags.name = "facets"
+    if comm.rank == 0:
+        output.parent.mkdir(parents=True, exist_ok=True)
+    comm.barrier()
+    mesh.topology.create_connectivity(1, 2)
+    with io.XDMFFile(comm, str(output), "w") as xdmf:
+        xdmf.write_mesh(mesh)
+        xdmf.write_meshtags(facet_tags)
+    if comm.rank == 0:
+        sidecar = {"boundaries": boundaries, "size": size, "points": points,
+                   "edges": edge_names}
+        output.with_suffix(".boundaries.json").write_text(json.dumps(sidecar, indent=1))
+    return mesh
+
+
+def main(points, edge_names, description):
+    ap = argparse.ArgumentParser(description=description)
+    ap.add_argument("--size", type=float, required=True, help="target cell size (m)")
+    ap.add_argument("--output", required=True, help="NAME.xdmf to write")
+    args = ap.parse_args()
+    if not args.size > 0:
+        sys.exit(f"error: --size {args.size}: must be > 0")
+    mesh = write_mesh(points, edge_names, args.size, args.output)
+    cells = mesh.topology.index_map(2).size_global
+    if MPI.COMM_WORLD.rank == 0:
+        print(f"{args.output}: {cells} triangles, size {args.size:g}")
