@@ -46,7 +46,7 @@ class FieldComparer:
     """P1 functions on the config's mesh filled from nodal files."""
 
     def __init__(self, cfg, mesh_file=None, comm=MPI.COMM_SELF):
-        self.mesh, _, _ = meshing.build(cfg, comm, mesh_file)
+        self.mesh, self.facet_tags, self.tag_of = meshing.build(cfg, comm, mesh_file)
         self.V = {"u": fem.VectorFunctionSpace(self.mesh, ("Lagrange", 1)),
                   "phi": fem.FunctionSpace(self.mesh, ("Lagrange", 1))}
         self._order = {f: self._lexorder(V.tabulate_dof_coordinates()[:, :2])

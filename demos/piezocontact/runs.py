@@ -1,0 +1,56 @@
+"""Run the C++ solver and the Python twin on one config and report how they
+compare: the engine of the demos."""
+
+import os
+import subprocess
+import time
+from pathlib import Path
+
+from . import compare
+
+DEMOS = Path(__file__).resolve().parents[1]
+
+
+def solver_commands(build_dir, np_):
+    """The two command lines, optionally under mpirun."""
+    mpi = ["mpirun", "-n", str(np_)] if np_ > 1 else []
+    return {"cpp": mpi + [str(Path(build_dir) / "piezo-contact")],
+            "python": mpi + ["/usr/bin/python3", str(DEMOS / "piezo_contact.py")]}
+
+
+def run_both(config, out_dir, overrides, build_dir, np_=1):
+    """Run C++ then Python on one config; return their summaries."""
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    summaries = {}
+    for name, cmd in solver_commands(build_dir, np_).items():
+        args = cmd + ["--config", str(config), "--output", str(Path(out_dir) / name)]
+        for o in overrides:
+            args += ["--set", o]
+        print(f"\n$ {' '.join(args)}", flush=True)
+        t0 = time.perf_counter()
+        subprocess.run(args, check=True, env=env)
+        print(f"  ({name}: {time.perf_counter() - t0:.1f} s wall, including start-up)")
+        summaries[name] = compare.load_summary(Path(out_dir) / name)
+    return summaries
+
+
+def report(summaries, out_dir):
+    cpp, py = summaries["cpp"], summaries["python"]
+    print()
+    print(compare.table(cpp, py))
+    fields = compare.field_differences(Path(out_dir) / "cpp", Path(out_dir) / "python", py)
+    final = fields[max(fields)]
+    print(f"\nrelative L2 difference at t = {cpp['steps'][-1]['t']:g}: "
+          f"u {final['u']:.2e}, phi {final['phi']:.2e}")
+    worst = max(max(d["u"], d["phi"]) for d in compare.probe_differences(cpp, py))
+    print(f"largest relative probe difference over all steps: {worst:.2e}")
+    for name, s in summaries.items():
+        its = [st["newton_iterations"] for st in s["steps"]]
+        t = s["timing"]
+        print(f"{name:>6}: {s['dofs']} dofs, {len(its)} steps, Newton iterations "
+              f"{min(its)}-{max(its)} (total {sum(its)}), time {t['total_s']:.2f} s "
+              f"(assembly {t['assembly_s']:.2f} s, solve {t['solve_s']:.2f} s)")
+    last = cpp["steps"][-1]
+    print(f"contact force {last['contact_force']} N/m, largest u.nu - g on Gamma_C "
+          f"{last['max_penetration']:.3e} m")
+    return max(final.values()), worst
