@@ -152,26 +152,4 @@ std::array<double, 2> contact_force(const Problem& problem)
   return f;
 }
 
-std::map<std::string, std::array<double, 2>> reactions(const Problem& problem)
-{
-  const auto& map = *problem.W->dofmap()->index_map;
-  const int bs = problem.W->dofmap()->index_map_bs();
-  la::Vector<double> b(problem.W->dofmap()->index_map, bs);
-  fem::assemble_vector(b.mutable_array(), *problem.F);
-  b.scatter_rev(std::plus<double>());
-  const std::int32_t owned = map.size_local() * bs;
-  const auto a = b.array();
-  std::map<std::string, std::array<double, 2>> out;
-  for (const auto& [name, comps] : problem.clamped_dofs)
-  {
-    std::array<double, 2> local = {0, 0};
-    for (int i = 0; i < 2; ++i)
-      for (auto d : comps[i])
-        if (d < owned)
-          local[i] += a[d];
-    MPI_Allreduce(local.data(), out[name].data(), 2, MPI_DOUBLE, MPI_SUM,
-                  problem.comm);
-  }
-  return out;
-}
 } // namespace piezo

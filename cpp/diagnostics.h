@@ -1,6 +1,6 @@
 // Per-step quantities of interest, as demos/piezocontact/diagnostics.py
-// computes them: probe values, the contact resultant, the largest u.nu - g
-// on Gamma_C and the reactions on clamped boundaries.
+// computes them: probe values, the contact resultant and the largest u.nu - g
+// on Gamma_C (the reactions come from the residual: nonlinear_system.h).
 #pragma once
 
 #include "problem.h"
@@ -41,7 +41,4 @@ private:
 /// Resultant force of the foundation on the body (N/m)
 std::array<double, 2> contact_force(const Problem& problem);
 
-/// Force of each clamped support on the body: the sum of the unconstrained
-/// residual over the boundary's u-dofs, per component
-std::map<std::string, std::array<double, 2>> reactions(const Problem& problem);
 } // namespace piezo

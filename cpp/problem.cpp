@@ -62,6 +62,8 @@ Problem::Problem(const json& cfg_, MPI_Comm comm_, const std::string& source,
       *form_piezo_contact_F, {W}, coefficients, consts, subdomains));
   J = std::make_shared<fem::Form<double>>(fem::create_form<double>(
       *form_piezo_contact_J, {W, W}, coefficients, consts, subdomains));
+  J_contact = std::make_shared<fem::Form<double>>(fem::create_form<double>(
+      *form_piezo_contact_J_contact, {W, W}, coefficients, consts, subdomains));
   contact_force[0] = std::make_shared<fem::Form<double>>(fem::create_form<double>(
       *form_piezo_contact_contact_force_x, {}, coefficients, consts, subdomains, mesh));
   contact_force[1] = std::make_shared<fem::Form<double>>(fem::create_form<double>(

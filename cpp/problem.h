@@ -48,7 +48,7 @@ struct Problem
   std::shared_ptr<fem::Function<double>> x, x_prev, u, phi;
   std::map<std::string, std::shared_ptr<fem::Constant<double>>> constants;
 
-  std::shared_ptr<fem::Form<double>> F, J;
+  std::shared_ptr<fem::Form<double>> F, J, J_contact;
   std::array<std::shared_ptr<fem::Form<double>>, 2> contact_force;
   std::shared_ptr<fem::Expression<double>> D_expr, stress_expr;
 

@@ -1,6 +1,7 @@
 #include "time_loop.h"
 #include "diagnostics.h"
 #include "fieldwise.h"
+#include "nonlinear_system.h"
 #include "output.h"
 #include "problem.h"
 
@@ -12,6 +13,7 @@
 #include <dolfinx/la/petsc.h>
 #include <dolfinx/nls/NewtonSolver.h>
 #include <iostream>
+#include <petscksp.h>
 
 namespace piezo
 {
@@ -24,60 +26,41 @@ double seconds_since(Clock::time_point t0)
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-/// Residual and Jacobian assembly in the way of dolfinx Python's
-/// NonlinearProblem.F/J (the 0.5.2 C++ hyperelasticity demo's F callback
-/// omits the lifting and is no model).
-class System
+/// With pc_type fieldsplit, PETSc is told which dofs are u and which phi
+/// (fieldsplit_u_*, fieldsplit_phi_* options then configure each block)
+void set_field_splits(KSP ksp, const Problem& problem)
 {
-public:
-  System(Problem& p, FieldwiseConvergence& monitor) : _p(p), _monitor(monitor)
+  PC pc;
+  KSPGetPC(ksp, &pc);
+  PetscBool is_fieldsplit;
+  PetscObjectTypeCompare((PetscObject)pc, PCFIELDSPLIT, &is_fieldsplit);
+  if (!is_fieldsplit)
+    return;
+  const auto& imap = *problem.W->dofmap()->index_map;
+  const std::int32_t owned = imap.size_local() * problem.W->dofmap()->index_map_bs();
+  const std::int64_t offset = imap.local_range()[0] * problem.W->dofmap()->index_map_bs();
+  for (const auto& [name, dofs] : {std::pair{"u", &problem.u_dofs},
+                                    std::pair{"phi", &problem.phi_dofs}})
   {
-    b = la::petsc::create_vector(*p.W->dofmap()->index_map, p.W->dofmap()->index_map_bs());
-    A = fem::petsc::create_matrix(*p.J);
+    std::vector<PetscInt> global;
+    for (auto d : *dofs)
+      if (d < owned)
+        global.push_back(offset + d);
+    std::sort(global.begin(), global.end());
+    IS is;
+    ISCreateGeneral(problem.comm, global.size(), global.data(), PETSC_COPY_VALUES, &is);
+    // u comes in (x, y) pairs per node: say so, for nodal AMG on that block
+    bool pairs = std::string(name) == "u" and global.size() % 2 == 0;
+    for (std::size_t i = 0; pairs and i < global.size(); i += 2)
+      pairs = global[i + 1] == global[i] + 1 and global[i] % 1 == 0;
+    int all_pairs = pairs;
+    MPI_Allreduce(MPI_IN_PLACE, &all_pairs, 1, MPI_INT, MPI_LAND, problem.comm);
+    if (all_pairs)
+      ISSetBlockSize(is, 2);
+    PCFieldSplitSetIS(pc, name, is);
+    ISDestroy(&is);
   }
-  ~System()
-  {
-    VecDestroy(&b);
-    MatDestroy(&A);
-  }
-
-  void F(const Vec x, Vec r)
-  {
-    const auto t0 = Clock::now();
-    Vec r_local;
-    VecGhostGetLocalForm(r, &r_local);
-    VecSet(r_local, 0.0);
-    VecGhostRestoreLocalForm(r, &r_local);
-    fem::petsc::assemble_vector(r, *_p.F);
-    fem::petsc::apply_lifting(r, {_p.J}, {_p.bcs}, {x}, -1.0);
-    VecGhostUpdateBegin(r, ADD_VALUES, SCATTER_REVERSE);
-    VecGhostUpdateEnd(r, ADD_VALUES, SCATTER_REVERSE);
-    fem::petsc::set_bc(r, _p.bcs, x, -1.0);
-    assembly_s += seconds_since(t0);
-  }
-
-  void J(const Vec, Mat M)
-  {
-    const auto t0 = Clock::now();
-    MatZeroEntries(M);
-    fem::assemble_matrix(la::petsc::Matrix::set_fn(M, ADD_VALUES), *_p.J, _p.bcs);
-    MatAssemblyBegin(M, MAT_FLUSH_ASSEMBLY);
-    MatAssemblyEnd(M, MAT_FLUSH_ASSEMBLY);
-    fem::set_diagonal<double>(la::petsc::Matrix::set_fn(M, INSERT_VALUES), *_p.W, _p.bcs);
-    MatAssemblyBegin(M, MAT_FINAL_ASSEMBLY);
-    MatAssemblyEnd(M, MAT_FINAL_ASSEMBLY);
-    assembly_s += seconds_since(t0);
-    _monitor.set_scaling(M);
-  }
-
-  Vec b;
-  Mat A;
-  double assembly_s = 0.0;
-
-private:
-  Problem& _p;
-  FieldwiseConvergence& _monitor;
-};
+}
 
 std::string option_value(const json& v)
 {
@@ -100,12 +83,13 @@ json fields_json(const std::map<std::string, FieldNorms>& norms,
 
 json step_record(const Problem& problem, const Probes& probes,
                  const ContactGeometry& contact, const FieldwiseConvergence& monitor,
-                 double t, int its)
+                 const NonlinearSystem& system, double t, int its, int factorisations)
 {
   const auto& final = monitor.history.back();
   json step = json::object();
   step["t"] = t;
   step["newton_iterations"] = its;
+  step["factorisations"] = factorisations;
   step["residual_norms"] = fields_json(final, &FieldNorms::residual);
   step["relative_residuals"] = fields_json(final, &FieldNorms::relative);
   step["residual_history"] = json::array();
@@ -124,7 +108,7 @@ json step_record(const Problem& problem, const Probes& probes,
   const auto gap = contact.max_normal_gap(problem, problem.cfg["contact"]["gap"].get<double>());
   step["max_penetration"] = gap ? json(*gap) : json(nullptr);
   step["reactions"] = json::object();
-  for (const auto& [name, r] : reactions(problem))
+  for (const auto& [name, r] : system.reactions) // of the converged iterate
     step["reactions"][name] = {r[0], r[1]};
   return step;
 }
@@ -136,6 +120,33 @@ std::string sci(double v)
   char buf[32];
   std::snprintf(buf, sizeof(buf), "%.3e", v);
   return buf;
+}
+
+json stats(const OperationStats& s) { return {{"count", s.count}, {"seconds", s.seconds}}; }
+
+double callback_seconds(const NonlinearSystem& sys)
+{
+  return sys.residual.seconds + sys.jacobian.seconds + sys.contact_jacobian.seconds
+         + sys.factorisation.seconds;
+}
+
+/// Where the time went. Triangular solves: the Newton time not spent in the
+/// callbacks (one KSPSolve per iteration, plus vector updates); the first
+/// Jacobian and factorisation, made before the loop, count in theirs.
+json timing(const NonlinearSystem& sys, double total_s, double newton_s,
+            double callbacks_in_newton, int newton_its)
+{
+  const double solves = std::max(0.0, newton_s - callbacks_in_newton);
+  return {{"total_s", total_s},
+          {"assembly_s", sys.residual.seconds + sys.jacobian.seconds + sys.contact_jacobian.seconds},
+          {"solve_s", sys.factorisation.seconds + solves},
+          {"operations",
+           {{"residual", stats(sys.residual)},
+            {"jacobian", stats(sys.jacobian)},
+            {"contact_jacobian", stats(sys.contact_jacobian)},
+            {"factorisation", stats(sys.factorisation)},
+            {"triangular_solve", {{"count", newton_its}, {"seconds", solves}}},
+            {"reused_factorisation", sys.reused}}}};
 }
 
 void print_progress(int n, int N, const json& step)
@@ -176,10 +187,10 @@ json run(const json& cfg, const std::filesystem::path& out_dir, MPI_Comm comm,
   FieldwiseConvergence monitor({{"u", problem.u_dofs}, {"phi", problem.phi_dofs}},
                                problem.bc_dofs, imap.size_local() * bs, newton_cfg["rtol"].get<double>(),
                                newton_cfg["atol"].get<double>(), comm);
-  System system(problem, monitor);
-
   Vec x = la::petsc::create_vector_wrap(*problem.x->x());
   nls::petsc::NewtonSolver newton(comm);
+  NonlinearSystem system(problem, monitor, newton.get_krylov_solver().ksp(),
+                         cfg["solver"]["reuse_factorisation"].get<bool>());
   newton.setF([&system](const Vec x, Vec r) { system.F(x, r); }, system.b);
   newton.setJ([&system](const Vec x, Mat A) { system.J(x, A); }, system.A);
   newton.set_form(
@@ -210,6 +221,7 @@ json run(const json& cfg, const std::filesystem::path& out_dir, MPI_Comm comm,
   for (const auto& [key, value] : cfg["solver"]["petsc_options"].items())
     la::petsc::options::set("nls_solve_" + key, option_value(value));
   newton.get_krylov_solver().set_from_options();
+  set_field_splits(newton.get_krylov_solver().ksp(), problem);
 
   Writer writer(problem, out_dir);
   json summary = {{"solver", "cpp"},
@@ -228,8 +240,10 @@ json run(const json& cfg, const std::filesystem::path& out_dir, MPI_Comm comm,
   auto xa = problem.x->x()->mutable_array();
   auto xp = problem.x_prev->x()->mutable_array();
   std::vector<double> x_prev2(xp.begin(), xp.end()); // u_{n-2}, for the predictor
-  system.J(x, system.A);                              // initial scaling D
-  double solve_s = 0.0;
+  system.J(x, system.A); // initial scaling D (and first factorisation)
+  const double callbacks_before = callback_seconds(system);
+  double newton_s = 0.0;
+  int newton_its = 0;
   for (int n = 1; n <= N; ++n)
   {
     const double t = n * k;
@@ -240,11 +254,12 @@ json run(const json& cfg, const std::filesystem::path& out_dir, MPI_Comm comm,
       bc->set(xa);
     problem.x->x()->scatter_fwd();
     monitor.history.clear();
-    const double a0 = system.assembly_s;
+    const int f0 = system.factorisation.count;
     const auto t0 = Clock::now();
     const auto [its, converged] = newton.solve(x);
     problem.x->x()->scatter_fwd();
-    solve_s += seconds_since(t0) - (system.assembly_s - a0);
+    newton_s += seconds_since(t0);
+    newton_its += its;
     if (!converged)
     {
       const auto& last = monitor.history.back();
@@ -258,14 +273,15 @@ json run(const json& cfg, const std::filesystem::path& out_dir, MPI_Comm comm,
       throw NewtonFailure(msg);
     }
     problem.update_fields();
-    json step = step_record(problem, probes, contact, monitor, t, its);
+    json step = step_record(problem, probes, contact, monitor, system, t, its,
+                            system.factorisation.count - f0);
+    step["krylov_iterations"] = newton.krylov_iterations(); // 1 per solve with LU
     std::copy(xp.begin(), xp.end(), x_prev2.begin());
     std::copy(xa.begin(), xa.end(), xp.begin());
     writer.write_step(n, t, n == N);
     summary["steps"].push_back(step);
-    summary["timing"] = {{"total_s", seconds_since(t_start)},
-                         {"assembly_s", system.assembly_s},
-                         {"solve_s", solve_s}};
+    summary["timing"] = timing(system, seconds_since(t_start), newton_s,
+                               callback_seconds(system) - callbacks_before, newton_its);
     if (rank == 0)
     {
       write_json_atomic(out_dir / "summary.json", summary);

@@ -101,6 +101,15 @@ def jacobian(F, x, dx_trial):
     return ufl.derivative(F, x, dx_trial)
 
 
+def contact_jacobian(x, y, dx_trial, ds, data):
+    """The derivative of contact_term alone: the only part of the Jacobian
+    that depends on the state (the bulk is linear)."""
+    u, _ = ufl.split(x)
+    w, _ = ufl.split(y)
+    n = ufl.FacetNormal(x.ufl_domain())
+    return ufl.derivative(contact_term(u, w, n, ds, data), x, dx_trial)
+
+
 def contact_force(x, ds, data, i):
     """Component i of the resultant force of the foundation on the body,
     -int_{Gamma_C} p(u.nu - g) nu ds (N/m per unit thickness)."""

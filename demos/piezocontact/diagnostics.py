@@ -1,12 +1,11 @@
 """Per-step quantities of interest, as cpp/diagnostics.cpp computes them:
-probe values, the contact resultant, the largest u.nu - g on Gamma_C and the
-reactions on clamped boundaries (from the unconstrained residual)."""
+probe values, the contact resultant and the largest u.nu - g on Gamma_C (the
+reactions come from the residual: twin._Problem)."""
 
 import numpy as np
 from dolfinx import fem, geometry
 from dolfinx import cpp as _cpp
 from mpi4py import MPI
-from petsc4py import PETSc
 
 from .config import ConfigError, _fmt
 
@@ -90,19 +89,3 @@ class ContactGeometry:
 def contact_force(problem):
     return [problem.comm.allreduce(fem.assemble_scalar(f), op=MPI.SUM)
             for f in problem.contact_force_forms]
-
-
-def reactions(problem):
-    """Force of each clamped support on the body: the sum of the unconstrained
-    residual over the boundary's u-dofs, per component."""
-    b = fem.petsc.assemble_vector(problem.F_form)
-    b.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
-    owned = problem.W.dofmap.index_map.size_local * problem.W.dofmap.index_map_bs
-    out = {}
-    with b.localForm() as bl:
-        arr = bl.array_r
-        for name, comps in problem.clamped_dofs.items():
-            out[name] = [problem.comm.allreduce(float(np.sum(arr[d[d < owned]])), op=MPI.SUM)
-                         for d in comps]
-    b.destroy()
-    return out

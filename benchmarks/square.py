@@ -1,0 +1,184 @@
+#!/usr/bin/python3
+"""Benchmark example 1 (the square, k = h = 1/n, T = 1): the C++ solver
+(LU kept while the Jacobian is unchanged) against the Python twin driven the
+stock way (NonlinearProblem + NewtonSolver, a factorisation per iteration),
+in the same run, serial and on 2 MPI processes; the cost's growth with the
+number of dofs; the C++ run against its own ideal; the whole Figure-3 study;
+an iterative solver against LU, per linear solve.
+
+    /usr/bin/python3 benchmarks/square.py                  # prints markdown
+    /usr/bin/python3 benchmarks/square.py --write docs/benchmarks.md
+    /usr/bin/python3 benchmarks/square.py --sizes 32 64 --no-mpi --no-study
+
+Output files (XDMF, nodal) are off: this measures the solver, not the disk.
+Timings come from each run's summary.json; wall and peak memory per process
+from /usr/bin/time.
+"""
+
+import argparse
+import json
+import math
+import os
+import platform
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+SQUARE = ROOT / "demos" / "square.json"
+ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+NO_OUTPUT = ["output.xdmf=false", "output.nodal=none"]
+ITERATIVE = {  # GMRES, one AMG V-cycle per field, nodal AMG on the u block
+    "ksp_type": "gmres", "ksp_rtol": 1e-12, "ksp_max_it": 2000, "ksp_gmres_restart": 200,
+    "pc_type": "fieldsplit", "pc_fieldsplit_type": "multiplicative",
+    "fieldsplit_u_ksp_type": "preonly", "fieldsplit_u_pc_type": "hypre",
+    "fieldsplit_u_pc_hypre_boomeramg_nodal_coarsen": 6,
+    "fieldsplit_u_pc_hypre_boomeramg_vec_interp_variant": 3,
+    "fieldsplit_phi_ksp_type": "preonly", "fieldsplit_phi_pc_type": "hypre"}
+
+
+def run(solver, n, np_=1, steps=None, extra=()):
+    """One run; returns its summary plus wall time and peak memory (MB,
+    largest process) as measured from outside."""
+    exe = {"cpp": [str(Path(os.environ.get("PIEZO_BUILD", ROOT / "build")) / "piezo-contact")],
+           "python": ["/usr/bin/python3", str(ROOT / "demos" / "piezo_contact.py")]}[solver]
+    steps = steps or n
+    with tempfile.TemporaryDirectory() as out, tempfile.TemporaryDirectory() as mem:
+        timed = ["/usr/bin/time", "-f", "%M", "-o", f"{mem}/rss.%q{{OMPI_COMM_WORLD_RANK}}"]
+        cmd = (["mpirun", "-n", str(np_)] if np_ > 1 else []) + timed + exe + [
+            "--config", str(SQUARE), "--output", out, "--quiet"]
+        for o in [f"mesh.n={n}", f"time.steps={steps}", f"time.T={steps / n}",
+                  *NO_OUTPUT, *extra]:
+            cmd += ["--set", o]
+        t0 = time.perf_counter()
+        subprocess.run(cmd, check=True, env=ENV, capture_output=True)
+        wall = time.perf_counter() - t0
+        summary = json.loads((Path(out) / "summary.json").read_text())
+        peak = max(int(p.read_text().split()[-1]) for p in Path(mem).iterdir()) / 1024
+    summary["wall_s"], summary["peak_mb"] = wall, peak
+    return summary
+
+
+def ideal_s(s):
+    """steps x (one triangular solve + two residuals) + factorisations x one
+    LU, each at its average measured cost in the same run (C++ only)."""
+    ops = s["timing"]["operations"]
+    avg = {k: ops[k]["seconds"] / max(ops[k]["count"], 1)
+           for k in ("triangular_solve", "residual", "factorisation")}
+    return (len(s["steps"]) * (avg["triangular_solve"] + 2 * avg["residual"])
+            + ops["factorisation"]["count"] * avg["factorisation"])
+
+
+def factorisations(s):
+    ops = s["timing"]["operations"]
+    return ops["factorisation"]["count"] if "factorisation" in ops else ops["factorisations"]
+
+
+def fit_exponent(xs, ys):
+    lx, ly = [math.log(x) for x in xs], [math.log(y) for y in ys]
+    mx, my = sum(lx) / len(lx), sum(ly) / len(ly)
+    return sum((a - mx) * (b - my) for a, b in zip(lx, ly)) / sum((a - mx) ** 2 for a in lx)
+
+
+def comparison_table(sizes, np_, lines):
+    lines += [f"\n### {'serial' if np_ == 1 else f'mpirun -n {np_}'}\n",
+              "| n | dofs | solver | wall (s) | s/step | Newton it./step | factorisations "
+              "| peak MB/process | Python/C++ | C++ ideal (s) | actual/ideal |",
+              "|---|---|---|---|---|---|---|---|---|---|---|"]
+    walls = {"cpp": [], "python": []}
+    dofs = []
+    for n in sizes:
+        res = {solver: run(solver, n, np_) for solver in ("cpp", "python")}
+        dofs.append(res["cpp"]["dofs"])
+        for solver, s in res.items():
+            steps = len(s["steps"])
+            its = sum(st["newton_iterations"] for st in s["steps"]) / steps
+            walls[solver].append(s["wall_s"])
+            ratio = f"{res['python']['wall_s'] / res['cpp']['wall_s']:.1f}" \
+                if solver == "python" else ""
+            ideal, vs_ideal = "", ""
+            if solver == "cpp":
+                ideal = f"{ideal_s(s):.2f}"
+                vs_ideal = f"{s['timing']['total_s'] / ideal_s(s):.2f}"
+            lines.append(
+                f"| {n} | {s['dofs']} | {solver} | {s['wall_s']:.2f} | {s['wall_s'] / steps:.3f} "
+                f"| {its:.2f} | {factorisations(s)} | {s['peak_mb']:.0f} | {ratio} "
+                f"| {ideal} | {vs_ideal} |")
+            print(lines[-1], flush=True)
+    if len(sizes) > 1:
+        lines.append("")
+        for solver in ("cpp", "python"):
+            lines.append(f"- {solver}: wall time grows like dofs^{fit_exponent(dofs, walls[solver]):.2f} "
+                         f"(least squares over n = {sizes[0]}..{sizes[-1]}, k = 1/n, so the "
+                         "number of steps grows too)")
+    return lines
+
+
+def study(finest, lines):
+    levels = [2 ** i for i in range(1, int(math.log2(finest)) + 1)]
+    t0 = time.perf_counter()
+    for n in levels:
+        run("cpp", n)
+    total = time.perf_counter() - t0
+    lines += ["\n### Figure-3 study (C++)\n",
+              f"h = k = 1/{levels[0]} .. 1/{levels[-1]} ({len(levels)} runs, one after the "
+              f"other, process start-up included): **{total:.1f} s** wall."]
+    print(lines[-1], flush=True)
+
+
+def iterative(sizes, lines):
+    lines += ["\n### Iterative solver against LU, per linear solve (C++, 4 steps, k = 1/n)\n",
+              "GMRES (rtol 1e-12) preconditioned by a multiplicative fieldsplit: BoomerAMG on "
+              "u (nodal coarsening, 2x2 blocks) and on phi. With LU the factorisation is kept "
+              "while J is unchanged, so a step costs one triangular solve.\n",
+              "| n | dofs | LU: factorisation (s) | LU: triangular solve (s) | iterative: "
+              "setup + solve per Newton iteration (s) | Krylov it. per solve |",
+              "|---|---|---|---|---|---|"]
+    opts = [f"solver.petsc_options={json.dumps(ITERATIVE)}"]
+    for n in sizes:
+        lu, it = run("cpp", n, steps=4), run("cpp", n, steps=4, extra=opts)
+        o = lu["timing"]["operations"]
+        its = sum(s["newton_iterations"] for s in it["steps"])
+        kry = sum(s["krylov_iterations"] for s in it["steps"]) / its
+        oi = it["timing"]["operations"]
+        per = (oi["factorisation"]["seconds"] + oi["triangular_solve"]["seconds"]) / its
+        lines.append(f"| {n} | {lu['dofs']} | {o['factorisation']['seconds'] / o['factorisation']['count']:.3f} "
+                     f"| {o['triangular_solve']['seconds'] / o['triangular_solve']['count']:.4f} "
+                     f"| {per:.3f} | {kry:.0f} |")
+        print(lines[-1], flush=True)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--sizes", type=int, nargs="+", default=[32, 64, 128, 256])
+    ap.add_argument("--no-mpi", action="store_true")
+    ap.add_argument("--no-study", action="store_true")
+    ap.add_argument("--write", help="also write the markdown report to this file")
+    args = ap.parse_args()
+    t0 = time.perf_counter()
+    lines = ["# Benchmarks\n",
+             f"Regenerate: `/usr/bin/python3 benchmarks/square.py --write docs/benchmarks.md` "
+             f"(this run: {platform.node()}, {os.cpu_count()} cores, "
+             f"{time.strftime('%Y-%m-%d')}).\n",
+             "Example 1, T = 1, k = h = 1/n; XDMF and nodal output off. Wall time is "
+             "measured outside the process (start-up included); peak memory per process "
+             "from /usr/bin/time; the C++ ideal is steps x (triangular solve + 2 residual "
+             "assemblies) + factorisations x LU at the run's own average costs, set "
+             "against the run's in-process time."]
+    comparison_table(args.sizes, 1, lines)
+    if not args.no_mpi:
+        comparison_table(args.sizes, 2, lines)
+    if not args.no_study:
+        study(max(args.sizes), lines)
+    iterative(args.sizes, lines)
+    lines.append(f"\n(benchmark wall time {time.perf_counter() - t0:.0f} s)")
+    report = "\n".join(lines) + "\n"
+    print(report)
+    if args.write:
+        Path(args.write).write_text(report)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
