@@ -112,6 +112,13 @@ int main(int argc, char* argv[])
       std::cerr << "error: " << e.what() << std::endl;
     code = piezo::exit_run_error;
   }
+  catch (const std::exception& e)
+  {
+    // Unexpected, perhaps on one rank only: the others may be waiting in a
+    // collective call, so end the whole job rather than hang
+    std::cerr << "error (rank " << rank << "): " << e.what() << std::endl;
+    MPI_Abort(MPI_COMM_WORLD, 1);
+  }
   PetscFinalize();
   return code;
 }

@@ -123,12 +123,23 @@ NamedMesh read_xdmf(const std::filesystem::path& file, MPI_Comm comm,
                       + file.string() + " from " + sidecar.string() + ": " + e.what());
   }
   NamedMesh out;
-  io::XDMFFile f(comm, file, "r");
-  out.mesh = std::make_shared<mesh::Mesh>(f.read_mesh(
-      fem::CoordinateElement(mesh::CellType::triangle, 1),
-      mesh::GhostMode::shared_facet, "mesh"));
-  out.mesh->topology_mutable().create_connectivity(1, 2);
-  const auto file_tags = f.read_meshtags(out.mesh, "facets");
+  std::vector<std::int32_t> tag_indices, tag_values;
+  try
+  {
+    io::XDMFFile f(comm, file, "r");
+    out.mesh = std::make_shared<mesh::Mesh>(f.read_mesh(
+        fem::CoordinateElement(mesh::CellType::triangle, 1),
+        mesh::GhostMode::shared_facet, "mesh"));
+    out.mesh->topology_mutable().create_connectivity(1, 2);
+    const auto file_tags = f.read_meshtags(out.mesh, "facets");
+    tag_indices = file_tags.indices();
+    tag_values = file_tags.values();
+  }
+  catch (const std::exception& e) // every rank reads the same file
+  {
+    throw ConfigError(source + ": mesh: cannot read a triangle mesh \"mesh\" with facet "
+                      "tags \"facets\" from " + file.string() + ": " + e.what());
+  }
   std::map<std::string, int> sorted;
   for (const auto& [name, tag] : names.items())
     sorted[name] = tag.get<int>();
@@ -140,9 +151,9 @@ NamedMesh read_xdmf(const std::filesystem::path& file, MPI_Comm comm,
     slot_of_file_tag[tag] = slot;
   }
   std::vector<std::pair<std::int32_t, std::int32_t>> tagged;
-  for (std::size_t i = 0; i < file_tags.indices().size(); ++i)
-    if (auto it = slot_of_file_tag.find(file_tags.values()[i]); it != slot_of_file_tag.end())
-      tagged.emplace_back(file_tags.indices()[i], it->second);
+  for (std::size_t i = 0; i < tag_indices.size(); ++i)
+    if (auto it = slot_of_file_tag.find(tag_values[i]); it != slot_of_file_tag.end())
+      tagged.emplace_back(tag_indices[i], it->second);
   out.facet_tags = make_tags(out.mesh, std::move(tagged));
   return out;
 }

@@ -99,25 +99,25 @@ Writer::Writer(const Problem& problem, const std::filesystem::path& dir)
     _stress = std::make_shared<fem::Function<double>>(
         std::make_shared<fem::FunctionSpace>(fem::create_functionspace(mesh, dg0, 3)));
     _stress->name = "stress_voigt";
-    _xdmf = std::make_unique<io::XDMFFile>(problem.comm, dir / "solution.xdmf", "w");
-    _xdmf->write_mesh(*mesh);
+    _xdmf = dir / "solution.xdmf";
+    io::XDMFFile f(problem.comm, _xdmf, "w");
+    f.write_mesh(*mesh);
+    f.close();
   }
-}
-
-Writer::~Writer()
-{
-  if (_xdmf)
-    _xdmf->close();
 }
 
 void Writer::write_step(int step, double t, bool final)
 {
-  if (_xdmf)
+  if (!_xdmf.empty())
   {
     _D->interpolate(*_problem.D_expr);
     _stress->interpolate(*_problem.stress_expr);
+    // open and close at every step: a killed run leaves a file that is
+    // complete up to its last step (HDF5 flushed, XML rewritten)
+    io::XDMFFile xdmf(_problem.comm, _xdmf, "a");
     for (const auto& f : {_problem.u, _problem.phi, _D, _stress})
-      _xdmf->write_function(*f, t);
+      xdmf.write_function(*f, t);
+    xdmf.close();
   }
   if (_nodal == "all" or (_nodal == "final" and final))
   {

@@ -22,7 +22,6 @@ class Writer
 {
 public:
   Writer(const Problem& problem, const std::filesystem::path& dir);
-  ~Writer();
   /// Write the state of problem.u, problem.phi (updated by the caller)
   void write_step(int step, double t, bool final);
 
@@ -30,7 +29,7 @@ private:
   const Problem& _problem;
   std::filesystem::path _dir;
   std::string _nodal;
-  std::unique_ptr<io::XDMFFile> _xdmf;
+  std::filesystem::path _xdmf; ///< empty: no XDMF output
   std::shared_ptr<fem::Function<double>> _D, _stress;
 };
 } // namespace piezo

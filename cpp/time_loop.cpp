@@ -4,6 +4,7 @@
 #include "nonlinear_system.h"
 #include "output.h"
 #include "problem.h"
+#include "step_control.h"
 
 #include <chrono>
 #include <cmath>
@@ -149,7 +150,7 @@ json timing(const NonlinearSystem& sys, double total_s, double newton_s,
             {"reused_factorisation", sys.reused}}}};
 }
 
-void print_progress(int n, int N, const json& step)
+void print_progress(int n, const json& step)
 {
   const json& r = step["relative_residuals"];
   auto e = [](const json& v, int digits, const char* missing)
@@ -160,9 +161,9 @@ void print_progress(int n, int N, const json& step)
     std::snprintf(buf, sizeof(buf), "%.*e", digits, v.get<double>());
     return std::string(buf);
   };
-  std::printf("[cpp] step %4d/%d  t = %.4g  newton %d  rel. residual u %s phi %s"
+  std::printf("[cpp] step %4d  t = %.4g  newton %d  rel. residual u %s phi %s"
               "  max(u.nu - g) = %s\n",
-              n, N, step["t"].get<double>(), step["newton_iterations"].get<int>(),
+              n, step["t"].get<double>(), step["newton_iterations"].get<int>(),
               e(r["u"], 1, "undefined").c_str(), e(r["phi"], 1, "undefined").c_str(),
               e(step["max_penetration"], 3, "n/a").c_str());
   std::fflush(stdout);
@@ -236,7 +237,6 @@ json run(const json& cfg, const std::filesystem::path& out_dir, MPI_Comm comm,
 
   const double T = cfg["time"]["T"].get<double>();
   const int N = cfg["time"]["steps"].get<int>();
-  const double k = T / N;
   auto xa = problem.x->x()->mutable_array();
   auto xp = problem.x_prev->x()->mutable_array();
   std::vector<double> x_prev2(xp.begin(), xp.end()); // u_{n-2}, for the predictor
@@ -244,12 +244,16 @@ json run(const json& cfg, const std::filesystem::path& out_dir, MPI_Comm comm,
   const double callbacks_before = callback_seconds(system);
   double newton_s = 0.0;
   int newton_its = 0;
-  for (int n = 1; n <= N; ++n)
+  summary["status"] = "running";
+  summary["events"] = json::array();
+  StepControl steps(T, N, newton_cfg["max_step_halvings"].get<int>());
+  while (!steps.done())
   {
-    const double t = n * k;
+    const auto [t, k] = steps.attempt();
+    problem.constants.at("k")->value[0] = k;
     // Predictor u^0 = u_{n-1} + k du_{n-1}, phi^0 = phi_{n-1}; then the BCs
     for (auto d : problem.u_dofs)
-      xa[d] = 2.0 * xp[d] - x_prev2[d];
+      xa[d] = xp[d] + k / steps.k_last * (xp[d] - x_prev2[d]);
     for (const auto& bc : problem.bcs)
       bc->set(xa);
     problem.x->x()->scatter_fwd();
@@ -263,30 +267,53 @@ json run(const json& cfg, const std::filesystem::path& out_dir, MPI_Comm comm,
     if (!converged)
     {
       const auto& last = monitor.history.back();
-      char msg[256];
-      std::snprintf(msg, sizeof(msg),
-                    "Newton did not converge at t = %g (step %d) in %d iterations: "
+      char what[256];
+      std::snprintf(what, sizeof(what),
+                    "Newton did not converge at t = %g (k = %g) in %d iterations: "
                     "relative residuals u = %s, phi = %s",
-                    t, n, its, sci(last.at("u").relative).c_str(),
+                    t, k, its, sci(last.at("u").relative).c_str(),
                     sci(last.at("phi").relative).c_str());
-      VecDestroy(&x);
-      throw NewtonFailure(msg);
+      std::copy(xp.begin(), xp.end(), xa.begin()); // back to the last accepted state
+      problem.x->x()->scatter_fwd();
+      const std::string event = steps.reject();
+      summary["events"].push_back({{"t", t},
+                                   {"k", k},
+                                   {"newton_iterations", its},
+                                   {"relative_residuals", fields_json(last, &FieldNorms::relative)},
+                                   {"action", event}});
+      if (event == "stop")
+      {
+        summary["status"] = "failed";
+        summary["error"] = std::string(what) + "; gave up after "
+                           + std::to_string(steps.max_halvings)
+                           + " halvings of the time step";
+        if (rank == 0)
+          write_json_atomic(out_dir / "summary.json", summary);
+        VecDestroy(&x);
+        throw NewtonFailure(summary["error"].get<std::string>());
+      }
+      if (rank == 0)
+        std::printf("[cpp] %s: retrying with k = %g\n", what, steps.k);
+      continue;
     }
+    steps.accept();
     problem.update_fields();
     json step = step_record(problem, probes, contact, monitor, system, t, its,
                             system.factorisation.count - f0);
     step["krylov_iterations"] = newton.krylov_iterations(); // 1 per solve with LU
+    step["k"] = k;
     std::copy(xp.begin(), xp.end(), x_prev2.begin());
     std::copy(xa.begin(), xa.end(), xp.begin());
-    writer.write_step(n, t, n == N);
+    writer.write_step(steps.accepted, t, steps.done());
     summary["steps"].push_back(step);
+    summary["status"] = steps.done() ? "completed" : "running";
     summary["timing"] = timing(system, seconds_since(t_start), newton_s,
                                callback_seconds(system) - callbacks_before, newton_its);
     if (rank == 0)
     {
       write_json_atomic(out_dir / "summary.json", summary);
       if (progress)
-        print_progress(n, N, step);
+        print_progress(steps.accepted, step);
     }
   }
   VecDestroy(&x);

@@ -94,10 +94,14 @@ def _read_xdmf(mesh_file, comm, source):
     except (OSError, ValueError, KeyError) as err:
         raise ConfigError(f"{source}: mesh: cannot read the boundary names of {mesh_file} "
                           f"from {sidecar}: {err}") from None
-    with io.XDMFFile(comm, str(mesh_file), "r") as f:
-        msh = f.read_mesh(name="mesh")
-        msh.topology.create_connectivity(1, 2)
-        file_tags = f.read_meshtags(msh, name="facets")
+    try:  # every rank reads the same file
+        with io.XDMFFile(comm, str(mesh_file), "r") as f:
+            msh = f.read_mesh(name="mesh")
+            msh.topology.create_connectivity(1, 2)
+            file_tags = f.read_meshtags(msh, name="facets")
+    except RuntimeError as err:
+        raise ConfigError(f"{source}: mesh: cannot read a triangle mesh \"mesh\" with facet "
+                          f"tags \"facets\" from {mesh_file}: {err}") from None
     tag_of = {name: s + 1 for s, name in enumerate(sorted(names))}
     slot_of_file_tag = {names[name]: tag_of[name] for name in names}
     values = np.array([slot_of_file_tag.get(v, 0) for v in file_tags.values], dtype=np.int32)

@@ -59,8 +59,9 @@ class Writer:
             self.D = fem.Function(fem.VectorFunctionSpace(problem.mesh, dg0), name="D")
             self.stress = fem.Function(fem.VectorFunctionSpace(problem.mesh, dg0, dim=3),
                                        name="stress_voigt")
-            self.xdmf = io.XDMFFile(self.comm, str(self.dir / "solution.xdmf"), "w")
-            self.xdmf.write_mesh(problem.mesh)
+            self.xdmf = self.dir / "solution.xdmf"
+            with io.XDMFFile(self.comm, str(self.xdmf), "w") as f:
+                f.write_mesh(problem.mesh)
 
     def write_step(self, step, t, final):
         """Write the state of problem.u, problem.phi (updated by the caller)."""
@@ -68,8 +69,11 @@ class Writer:
         if self.xdmf is not None:
             self.D.interpolate(self.problem.D_expr)
             self.stress.interpolate(self.problem.stress_expr)
-            for f in (u, phi, self.D, self.stress):
-                self.xdmf.write_function(f, t)
+            # open and close at every step: a killed run leaves a file that is
+            # complete up to its last step (HDF5 flushed, XML rewritten)
+            with io.XDMFFile(self.comm, str(self.xdmf), "a") as xdmf:
+                for f in (u, phi, self.D, self.stress):
+                    xdmf.write_function(f, t)
         if self.nodal == "all" or (self.nodal == "final" and final):
             for name, f in (("u", u), ("phi", phi)):
                 rows = gather_nodal(f, self.comm)
@@ -77,5 +81,4 @@ class Writer:
                     np.save(self.dir / "nodal" / f"{name}_{step:04d}.npy", rows)
 
     def close(self):
-        if self.xdmf is not None:
-            self.xdmf.close()
+        """Nothing is held open between steps."""

@@ -110,16 +110,18 @@ def run(cfg, out_dir, comm, progress=True, source="config"):
                "steps": [], "timing": {}}
 
     T, N = cfg["time"]["T"], cfg["time"]["steps"]
-    k = T / N
     x, x_prev = problem.x, problem.x_prev
     x_prev2 = x_prev.x.array.copy()   # u_{n-2}, for the predictor
     u = problem.u_dofs
     nl.J(x.vector, newton.A)          # initial scaling D for the first test
     newton_s, newton_its, callbacks_in_newton = 0.0, 0, 0.0
-    for n in range(1, N + 1):
-        t = n * k
+    summary["status"], summary["events"] = "running", []
+    steps = StepControl(T, N, cfg["solver"]["newton"]["max_step_halvings"])
+    while not steps.done():
+        t, k = steps.attempt()
+        problem.data["k"].value = k
         # Predictor u^0 = u_{n-1} + k du_{n-1}, phi^0 = phi_{n-1}; then the BCs
-        x.x.array[u] = 2.0 * x_prev.x.array[u] - x_prev2[u]
+        x.x.array[u] = x_prev.x.array[u] + k / steps.k_last * (x_prev.x.array[u] - x_prev2[u])
         fem.petsc.set_bc(x.vector, problem.bcs)
         x.x.scatter_forward()
         monitor.history = []
@@ -132,24 +134,84 @@ def run(cfg, out_dir, comm, progress=True, source="config"):
         callbacks_in_newton += sum(op["seconds"] for op in nl.ops.values()) - c0
         if not converged:
             last = monitor.history[-1]["relative"]
-            raise NewtonFailure(f"Newton did not converge at t = {t:g} (step {n}) in {its} "
-                                f"iterations: relative residuals u = {_e(last['u'])}, "
-                                f"phi = {_e(last['phi'])}")
+            what = (f"Newton did not converge at t = {t:g} (k = {k:g}) in {its} iterations: "
+                    f"relative residuals u = {_e(last['u'])}, phi = {_e(last['phi'])}")
+            x.x.array[:] = x_prev.x.array  # back to the last accepted state
+            event = steps.reject()
+            summary["events"].append({"t": t, "k": k, "newton_iterations": its,
+                                      "relative_residuals": last, "action": event})
+            if event == "stop":
+                summary["status"] = "failed"
+                summary["error"] = (f"{what}; gave up after {steps.max_halvings} halvings "
+                                    "of the time step")
+                if comm.rank == 0:
+                    output.write_json_atomic(f"{out_dir}/summary.json", summary)
+                writer.close()
+                raise NewtonFailure(summary["error"])
+            if comm.rank == 0:
+                print(f"[python] {what}: retrying with k = {steps.k:g}", flush=True)
+            continue
+        steps.accept()
         problem.update_fields()
         step = _step_record(problem, probes, contact, monitor, nl, t, its,
                             nl.ops["jacobian"]["count"] - j0)
+        step["k"] = k
         x_prev2[:] = x_prev.x.array
         x_prev.x.array[:] = x.x.array
-        writer.write_step(n, t, final=(n == N))
+        writer.write_step(steps.accepted, t, final=steps.done())
         summary["steps"].append(step)
+        summary["status"] = "completed" if steps.done() else "running"
         summary["timing"] = _timing(nl, time.perf_counter() - t_start, newton_s,
                                     callbacks_in_newton, newton_its)
         if comm.rank == 0:
             output.write_json_atomic(f"{out_dir}/summary.json", summary)
             if progress:
-                _progress(n, N, step)
+                _progress(steps.accepted, N, step)
     writer.close()
     return summary
+
+
+class StepControl:
+    """Backward Euler steps of the config's size k = T/steps; when Newton
+    fails, the step is retried with k halved (at most max_halvings times in
+    a row) and the smaller k is kept until the next nominal time t_n = n k.
+    cpp/step_control.h does the same."""
+
+    def __init__(self, T, N, max_halvings):
+        self.T, self.N, self.max_halvings = T, N, max_halvings
+        self.k_nominal = T / N
+        self.n = 0             # nominal steps completed
+        self.t = 0.0           # time of the last accepted state
+        self.k = self.k_nominal
+        self.k_last = self.k_nominal  # size of the last accepted step
+        self.halvings = 0      # consecutive failures
+        self.accepted = 0
+
+    def done(self):
+        return self.n == self.N
+
+    def attempt(self):
+        """(t, k) of the next try; lands exactly on the next nominal time."""
+        target = (self.n + 1) * self.k_nominal
+        if self.t + self.k >= target - 1e-9 * self.k_nominal:
+            return target, target - self.t
+        return self.t + self.k, self.k
+
+    def accept(self):
+        t, k = self.attempt()
+        self.t, self.k_last, self.halvings = t, k, 0
+        self.accepted += 1
+        if t == (self.n + 1) * self.k_nominal:
+            self.n += 1
+            self.k = self.k_nominal
+
+    def reject(self):
+        """'halve k' or, past the limit, 'stop'."""
+        if self.halvings == self.max_halvings:
+            return "stop"
+        self.halvings += 1
+        self.k /= 2
+        return "halve k"
 
 
 def _timing(nl, total_s, newton_s, callbacks_in_newton, newton_its):
@@ -190,7 +252,7 @@ def _e(value, digits=3, missing="undefined"):
 
 def _progress(n, N, step):
     r = step["relative_residuals"]
-    print(f"[python] step {n:4d}/{N}  t = {step['t']:.4g}  newton {step['newton_iterations']}"
+    print(f"[python] step {n:4d}  t = {step['t']:.4g}  newton {step['newton_iterations']}"
           f"  rel. residual u {_e(r['u'], 1)} phi {_e(r['phi'], 1)}"
           f"  max(u.nu - g) = {_e(step['max_penetration'], 3, 'n/a')}", flush=True)
     sys.stdout.flush()

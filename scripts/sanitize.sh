@@ -1,0 +1,13 @@
+#!/usr/bin/env bash
+# Build with AddressSanitizer + UndefinedBehaviorSanitizer in build-sanitize/
+# and run the C++ tests (ctest: unit tests, example 1 serial and on 2 ranks).
+# Leak checking is off: MPI and PETSc keep allocations until exit by design.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/setup.sh >/dev/null
+cmake -B build-sanitize -S . -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPIEZO_SANITIZE=ON \
+  -DPython3_EXECUTABLE=/usr/bin/python3 >/dev/null
+cmake --build build-sanitize -j"$(nproc)"
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+export ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1
+cd build-sanitize && ctest --output-on-failure

@@ -1,0 +1,115 @@
+#!/usr/bin/python3
+"""Every kind of bad input the solvers must refuse, with (part of) the
+message both give. Used by tests/test_config.py; run it to regenerate the
+table of messages in docs/errors.md from real runs of the C++ solver:
+
+    /usr/bin/python3 tests/bad_inputs.py --write docs/errors.md
+"""
+
+import json
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+SQUARE = ROOT / "demos" / "square.json"
+CONTACTOR = ROOT / "demos" / "contactor.json"
+
+# name: (config, --set overrides, expected part of the message)
+CASES = {
+    "unknown key": (SQUARE, ["time.stpes=3"],
+                    "time.stpes: unknown key (did you mean 'time.steps'?)"),
+    "wrong type": (SQUARE, ["boundaries.top.traction=5"],
+                   "boundaries.top.traction = 5: expected a list of 2 numbers"),
+    "non-integer n": (SQUARE, ["mesh.n=4.5"], "mesh.n = 4.5: expected an integer"),
+    "T <= 0": (SQUARE, ["time.T=-1"], "time.T = -1: must be > 0"),
+    "steps < 1": (SQUARE, ["time.steps=0"], "time.steps = 0: must be >= 1"),
+    "permittivity with the paper's sign": (
+        SQUARE, ["material.permittivity=[[-7.37455e-11,0],[0,-7.8188e-11]]"],
+        "material.permittivity = [[-7.37455e-11,0.0],[0.0,-7.8188e-11]]: not positive "
+        "definite: permittivity must be positive definite (2.14c); the paper's Table 2 "
+        "prints -beta, use +8.3 eps0 and +8.8 eps0"),
+    "non-symmetric permittivity": (
+        SQUARE, ["material.permittivity=[[7e-11,1e-12],[0,8e-11]]"],
+        "material.permittivity = [[7e-11,1e-12],[0.0,8e-11]]: must be symmetric "
+        "(entry [0][1] = 1e-12 but [1][0] = 0)"),
+    "viscosity not positive definite": (
+        SQUARE, ["material.viscosity=[[21e9,30e9,0],[30e9,21.1e9,0],[0,0,4.25e9]]"],
+        "not positive definite: viscosity must be positive definite (2.11c)"),
+    "c_p < 0": (SQUARE, ["contact.c_p=-1"], "contact.c_p = -1: must be >= 0"),
+    "g < 0": (SQUARE, ["contact.gap=-1e-4"], "contact.gap = -0.0001: must be >= 0"),
+    "key of another mesh type": (SQUARE, ["mesh.size=0.1"],
+                                 "mesh.size: not used with mesh.type \"unit_square\""),
+    "mesh script missing": (CONTACTOR, ["mesh.geometry=nope.py"],
+                            "mesh.geometry = \"nope.py\": no such file"),
+    "mesh file unreadable": (SQUARE, ["mesh={\"type\":\"xdmf\",\"path\":\"BROKEN\"}"],
+                             "mesh: cannot read a triangle mesh \"mesh\" with facet tags"),
+    "unknown boundary name": (SQUARE, ["boundaries.lft={}"],
+                              "boundaries.lft: the mesh has no boundary 'lft' "
+                              "(it has: bottom, left, right, top)"),
+    "probe outside the domain": (SQUARE, ["probes=[[2,2]]"],
+                                 "probes[0] = [2.0,2.0]: outside the mesh"),
+    "output directory not writable": (SQUARE, [], "--output /proc/piezo: cannot write there"),
+    "malformed JSON": ("BROKEN_JSON", [], "invalid JSON at line 2 column 42: "),
+    "config file missing": ("MISSING", [], "cannot read config file: No such file or directory"),
+    "missing required key": ("NO_CP", [], "contact.c_p: missing required key"),
+}
+
+
+def materialise(case, tmp):
+    """(config path, overrides, output dir) for a case, making files it needs."""
+    config, overrides, _ = CASES[case]
+    tmp = Path(tmp)
+    out = "/proc/piezo" if case == "output directory not writable" else str(tmp / "out")
+    if config == "BROKEN_JSON":
+        config = tmp / "broken.json"
+        config.write_text('{\n  "mesh": {"type": "unit_square", "n": 4,}\n}\n')
+    elif config == "MISSING":
+        config = tmp / "nope.json"
+    elif config == "NO_CP":
+        cfg = json.loads(SQUARE.read_text())
+        del cfg["contact"]["c_p"]
+        config = tmp / "no_cp.json"
+        config.write_text(json.dumps(cfg))
+    if case == "mesh file unreadable":
+        (tmp / "broken.xdmf").write_text("<Xdmf>not a mesh</Xdmf>\n")
+        (tmp / "broken.boundaries.json").write_text('{"boundaries": {"a": 1}}')
+        overrides = [o.replace("BROKEN", str(tmp / "broken.xdmf")) for o in overrides]
+    return Path(config), overrides, out
+
+
+def main():
+    rows = ["# What bad input gets\n",
+            "Both solvers (`build/piezo-contact`, `demos/piezo_contact.py`) refuse each of "
+            "these before computing anything, with exit code 2 and the same one-line "
+            "message naming the file, the key and the value (for malformed JSON the "
+            "parsers' own descriptions differ after the line and column). Checked by "
+            "`tests/test_config.py`; this table is regenerated from real runs by "
+            "`/usr/bin/python3 tests/bad_inputs.py --write docs/errors.md`.\n",
+            "A Newton failure is retried with the time step halved (up to "
+            "`solver.newton.max_step_halvings`, default 4); if that fails too, the run "
+            "stops with exit code 3, the message names the time, the step and both "
+            "relative residuals, and summary.json (status \"failed\", with its events) "
+            "and the XDMF file keep every step computed before.\n",
+            "| bad input | message (C++ solver, config `demos/...` or a scratch file) |",
+            "|---|---|"]
+    exe = ROOT / "build" / "piezo-contact"
+    for case in CASES:
+        with tempfile.TemporaryDirectory() as tmp:
+            config, overrides, out = materialise(case, tmp)
+            args = [str(exe), "--config", str(config), "--output", out, "--quiet"]
+            for o in overrides:
+                args += ["--set", o]
+            proc = subprocess.run(args, capture_output=True, text=True)
+            message = proc.stderr.strip().splitlines()[-1].replace(tmp, "TMP")
+            message = message.replace(str(ROOT) + "/", "")
+        rows.append(f"| {case} | `{message}` (exit {proc.returncode}) |")
+    text = "\n".join(rows) + "\n"
+    print(text)
+    if "--write" in sys.argv:
+        Path(sys.argv[sys.argv.index("--write") + 1]).write_text(text)
+
+
+if __name__ == "__main__":
+    main()

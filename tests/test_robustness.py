@@ -1,0 +1,117 @@
+"""Newton failures are retried with a smaller step or stop cleanly, and a run
+that dies leaves readable files with every step computed before."""
+
+import json
+import os
+import signal
+import subprocess
+import time
+import xml.etree.ElementTree as ET
+
+import numpy as np
+import pytest
+from conftest import ENV, ROOT, command, run_solver
+from dolfinx import io
+from mpi4py import MPI
+
+VARIANT = ROOT / "demos" / "contactor_in_contact.json"
+SMALL = ["mesh.size=0.2", "output.nodal=none"]
+
+
+def xdmf_times(path):
+    """Time values per function listed in an XDMF file (it must parse)."""
+    root = ET.parse(path).getroot()
+    out = {}
+    for grid in root.iter("Grid"):
+        if grid.get("CollectionType") == "Temporal":
+            out[grid.get("Name")] = [float(t.get("Value")) for t in grid.iter("Time")]
+    return out
+
+
+@pytest.mark.parametrize("solver", ["cpp", "python"])
+def test_step_cut_rescues_newton(solver, tmp_path):
+    """At most 3 Newton iterations: the first steps need 4 at k = 1 and are
+    retried with k halved until they converge; the run then completes."""
+    s, _ = run_solver(solver, tmp_path, SMALL + ["time.steps=10",
+                                                 "solver.newton.max_iterations=3"],
+                      config=VARIANT)
+    assert s["status"] == "completed"
+    assert s["steps"][-1]["t"] == pytest.approx(10.0, rel=1e-14)
+    cuts = [e for e in s["events"] if e["action"] == "halve k"]
+    assert cuts and cuts[0]["t"] == 1.0 and cuts[0]["k"] == 1.0
+    assert min(st["k"] for st in s["steps"]) < 1.0
+    assert all(st["newton_iterations"] <= 3 for st in s["steps"])
+    # the nominal times are all reached exactly
+    times = [st["t"] for st in s["steps"]]
+    assert all(any(abs(t - n) < 1e-12 for t in times) for n in range(1, 11))
+
+
+def test_step_cut_is_the_same_in_both_solvers(tmp_path):
+    runs = {solver: run_solver(solver, tmp_path / solver, SMALL + [
+        "time.steps=10", "solver.newton.max_iterations=3"], config=VARIANT)[0]
+        for solver in ("cpp", "python")}
+    a, b = runs["cpp"], runs["python"]
+    assert [(e["t"], e["k"], e["action"]) for e in a["events"]] == \
+        [(e["t"], e["k"], e["action"]) for e in b["events"]]
+    assert [st["t"] for st in a["steps"]] == [st["t"] for st in b["steps"]]
+    pa, pb = a["steps"][-1]["probes"], b["steps"][-1]["probes"]
+    for x, y in zip(pa, pb):
+        assert np.allclose(x["u"], y["u"], rtol=1e-8, atol=0)
+
+
+@pytest.mark.parametrize("solver", ["cpp", "python"])
+def test_newton_failure_stops_cleanly_keeping_what_was_computed(solver, tmp_path):
+    """k = 0.25: step 1 converges in 3 iterations, step 2 needs 4; with no
+    halving allowed the run stops there, naming time and residuals, and the
+    first step stays on disk, readable."""
+    s, proc = run_solver(solver, tmp_path, SMALL + [
+        "time.steps=40", "solver.newton.max_iterations=3",
+        "solver.newton.max_step_halvings=0"], config=VARIANT, check=False)
+    assert proc.returncode == 3
+    message = proc.stderr.strip().splitlines()[-1]
+    assert message.startswith("error: Newton did not converge at t = 0.5 (k = 0.25) in 3 "
+                              "iterations: relative residuals u = ")
+    assert message.endswith("; gave up after 0 halvings of the time step")
+    assert s["status"] == "failed" and s["error"] in message
+    assert len(s["steps"]) == 1 and s["events"][-1]["action"] == "stop"
+    assert {name: len(t) for name, t in xdmf_times(tmp_path / "solution.xdmf").items()} == \
+        {"u": 1, "phi": 1, "D": 1, "stress_voigt": 1}
+
+
+def test_failure_message_is_the_same_in_both_solvers(tmp_path):
+    found = {}
+    for solver in ("cpp", "python"):
+        _, proc = run_solver(solver, tmp_path / solver, SMALL + [
+            "time.steps=40", "solver.newton.max_iterations=3",
+            "solver.newton.max_step_halvings=0"], config=VARIANT, check=False)
+        found[solver] = proc.stderr.strip().splitlines()[-1]
+    assert found["cpp"] == found["python"]
+
+
+@pytest.mark.parametrize("solver", ["cpp", "python"])
+def test_killed_run_leaves_readable_files(solver, tmp_path):
+    """kill -9 in the middle of a run: summary.json is valid JSON (status
+    running) and the XDMF file lists every completed step, its HDF5 data
+    still opening."""
+    args = command(solver) + ["--config", str(ROOT / "demos" / "square.json"),
+                              "--output", str(tmp_path), "--quiet",
+                              "--set", "mesh.n=48", "--set", "time.steps=2000"]
+    proc = subprocess.Popen(args, env=ENV, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    summary = tmp_path / "summary.json"
+    deadline = time.time() + 120
+    try:
+        while time.time() < deadline:
+            if summary.exists() and len(json.loads(summary.read_text())["steps"]) >= 5:
+                break
+            time.sleep(0.05)
+    finally:
+        os.kill(proc.pid, signal.SIGKILL)
+        proc.wait()
+    s = json.loads(summary.read_text())
+    assert s["status"] == "running" and 5 <= len(s["steps"]) < 2000
+    times = xdmf_times(tmp_path / "solution.xdmf")
+    assert set(times) == {"u", "phi", "D", "stress_voigt"}
+    for t in times.values():
+        assert len(t) >= len(s["steps"]) - 1  # the step being written may be lost
+    with io.XDMFFile(MPI.COMM_SELF, str(tmp_path / "solution.xdmf"), "r") as f:
+        assert f.read_mesh(name="mesh").topology.index_map(2).size_local == 2 * 48 * 48
