@@ -90,8 +90,15 @@ json check(const json& value, const json& rule, const std::string& path,
            const std::string& source)
 {
   const std::string t = rule["type"];
+  // a word allowed instead of the value
+  const json alternative = rule.value("alternative", json());
+  if (!alternative.is_null() and value == alternative)
+    return value;
   auto wrong = [&](const std::string& expected)
-  { fail(source, path + " = " + fmt(value) + ": expected " + expected); };
+  {
+    fail(source, path + " = " + fmt(value) + ": expected " + expected
+                     + (alternative.is_null() ? "" : " or " + fmt(alternative)));
+  };
 
   if (t == "object")
   {
@@ -244,6 +251,44 @@ void check_spd(const Matrix& m, const std::string& path,
     fail(source, path + " = " + fmt(json(m)) + ": not positive definite: " + why);
 }
 
+// A manufactured solution brings its own loads and Dirichlet data; "exact"
+// boundary values need one.
+void check_manufactured(const json& cfg, const std::string& source)
+{
+  const bool mms = cfg.contains("manufactured");
+  const std::string unused
+      = "not used with a manufactured solution (its loads come from the exact solution)";
+  if (mms)
+  {
+    for (const auto& [key, zero] : {std::pair{"body_force", json::array({0.0, 0.0})},
+                                    std::pair{"charge_density", json(0.0)}})
+    {
+      const json& v = cfg["loads"][key];
+      if (v != zero)
+        fail(source, std::string("loads.") + key + " = " + fmt(v) + ": " + unused);
+    }
+  }
+  for (const auto& [name, bc] : cfg["boundaries"].items())
+  {
+    for (const char* key : {"displacement", "potential"})
+    {
+      if (!bc.contains(key))
+        continue;
+      const std::string where
+          = "boundaries." + name + "." + key + " = " + fmt(bc[key]);
+      if (bc[key] == "exact" and !mms)
+        fail(source, where + ": needs the key manufactured (the exact solution "
+                             "to take it from)");
+      if (bc[key] != "exact" and mms)
+        fail(source, where + ": with a manufactured solution the Dirichlet data "
+                             "are the exact solution's: use \"exact\"");
+    }
+    for (const char* key : {"traction", "surface_charge"})
+      if (mms and bc.contains(key))
+        fail(source, "boundaries." + name + "." + key + ": " + unused);
+  }
+}
+
 // Rules that span keys (the same list as config.py's _check_semantics).
 void check_semantics(const json& cfg, const std::string& source)
 {
@@ -281,6 +326,7 @@ void check_semantics(const json& cfg, const std::string& source)
     if (bc.contains("potential") and bc.contains("surface_charge"))
       fail(source, where + ": potential and surface_charge are exclusive");
   }
+  check_manufactured(cfg, source);
 }
 
 bool is_index(const std::string& s, const json& node)

@@ -41,15 +41,33 @@ Problem::Problem(const json& cfg_, MPI_Comm comm_, const std::string& source,
   x->name = "x";
   x_prev = std::make_shared<fem::Function<double>>(W);
   x_prev->name = "x_prev";
+  // Collapsed sub-spaces and the W-dofs of each field
+  auto [Vu, map_u] = W->sub({0})->collapse();
+  V_u = std::make_shared<fem::FunctionSpace>(std::move(Vu));
+  u_dofs = std::move(map_u);
+  auto [Vphi, map_phi] = W->sub({1})->collapse();
+  V_phi = std::make_shared<fem::FunctionSpace>(std::move(Vphi));
+  phi_dofs = std::move(map_phi);
+  u = std::make_shared<fem::Function<double>>(V_u);
+  u->name = "u";
+  phi = std::make_shared<fem::Function<double>>(V_phi);
+  phi->name = "phi";
 
-  for (const auto& [name, shape] : forms::constant_shapes)
+  auto add_constants = [this](const auto& shapes)
   {
-    const std::size_t size = std::accumulate(shape.begin(), shape.end(),
-                                             std::size_t(1), std::multiplies{});
-    const std::vector<double> zeros(size, 0.0);
-    constants[name] = std::make_shared<fem::Constant<double>>(
-        std::span<const double>(zeros), std::span<const std::size_t>(shape));
-  }
+    for (const auto& [name, shape] : shapes)
+    {
+      const std::size_t size = std::accumulate(shape.begin(), shape.end(),
+                                               std::size_t(1), std::multiplies{});
+      const std::vector<double> zeros(size, 0.0);
+      constants[name] = std::make_shared<fem::Constant<double>>(
+          std::span<const double>(zeros), std::span<const std::size_t>(shape));
+    }
+  };
+  add_constants(forms::constant_shapes);
+  const bool is_manufactured = cfg.contains("manufactured");
+  if (is_manufactured)
+    add_constants(forms::manufactured_constant_shapes);
   set_constants();
 
   const std::map<std::string, std::shared_ptr<const fem::Function<double>>>
@@ -58,8 +76,17 @@ Problem::Problem(const json& cfg_, MPI_Comm comm_, const std::string& source,
       consts(constants.begin(), constants.end());
   const std::map<fem::IntegralType, const mesh::MeshTags<int>*> subdomains
       = {{fem::IntegralType::exterior_facet, facet_tags.get()}};
-  F = std::make_shared<fem::Form<double>>(fem::create_form<double>(
-      *form_piezo_contact_F, {W}, coefficients, consts, subdomains));
+  if (is_manufactured)
+  {
+    manufactured = std::make_unique<ManufacturedSolution>(
+        cfg["manufactured"], W, V_u, V_phi, coefficients, constants, *facet_tags);
+    F = manufactured->F;
+  }
+  else
+  {
+    F = std::make_shared<fem::Form<double>>(fem::create_form<double>(
+        *form_piezo_contact_F, {W}, coefficients, consts, subdomains));
+  }
   J = std::make_shared<fem::Form<double>>(fem::create_form<double>(
       *form_piezo_contact_J, {W, W}, coefficients, consts, subdomains));
   J_contact = std::make_shared<fem::Form<double>>(fem::create_form<double>(
@@ -73,17 +100,6 @@ Problem::Problem(const json& cfg_, MPI_Comm comm_, const std::string& source,
   stress_expr = std::make_shared<fem::Expression<double>>(fem::create_expression<double>(
       *expression_piezo_contact_stress, coefficients, consts, mesh));
 
-  // Collapsed sub-spaces and the W-dofs of each field
-  auto [Vu, map_u] = W->sub({0})->collapse();
-  V_u = std::make_shared<fem::FunctionSpace>(std::move(Vu));
-  u_dofs = std::move(map_u);
-  auto [Vphi, map_phi] = W->sub({1})->collapse();
-  V_phi = std::make_shared<fem::FunctionSpace>(std::move(Vphi));
-  phi_dofs = std::move(map_phi);
-  u = std::make_shared<fem::Function<double>>(V_u);
-  u->name = "u";
-  phi = std::make_shared<fem::Function<double>>(V_phi);
-  phi->name = "phi";
   create_bcs();
 }
 
@@ -154,10 +170,16 @@ void Problem::create_bcs()
     const auto facets = boundary_facets(name);
     if (bc.contains("displacement"))
     {
-      auto g = std::make_shared<fem::Function<double>>(V_u);
-      auto values = g->x()->mutable_array();
-      for (std::size_t i = 0; i < values.size(); ++i)
-        values[i] = bc["displacement"][i % 2].get<double>();
+      std::shared_ptr<fem::Function<double>> g;
+      if (bc["displacement"] == "exact")
+        g = manufactured->u_exact; // updated every step
+      else
+      {
+        g = std::make_shared<fem::Function<double>>(V_u);
+        auto values = g->x()->mutable_array();
+        for (std::size_t i = 0; i < values.size(); ++i)
+          values[i] = bc["displacement"][i % 2].get<double>();
+      }
       auto dofs = fem::locate_dofs_topological({*W->sub({0}), *V_u}, 1, facets);
       bc_dofs.insert(bc_dofs.end(), dofs[0].begin(), dofs[0].end());
       bcs.push_back(std::make_shared<fem::DirichletBC<double>>(g, std::move(dofs), W->sub({0})));
@@ -172,9 +194,15 @@ void Problem::create_bcs()
     }
     if (bc.contains("potential"))
     {
-      auto g = std::make_shared<fem::Function<double>>(V_phi);
-      std::fill(g->x()->mutable_array().begin(), g->x()->mutable_array().end(),
-                bc["potential"].get<double>());
+      std::shared_ptr<fem::Function<double>> g;
+      if (bc["potential"] == "exact")
+        g = manufactured->phi_exact; // updated every step
+      else
+      {
+        g = std::make_shared<fem::Function<double>>(V_phi);
+        std::fill(g->x()->mutable_array().begin(), g->x()->mutable_array().end(),
+                  bc["potential"].get<double>());
+      }
       auto dofs = fem::locate_dofs_topological({*W->sub({1}), *V_phi}, 1, facets);
       bc_dofs.insert(bc_dofs.end(), dofs[0].begin(), dofs[0].end());
       bcs.push_back(std::make_shared<fem::DirichletBC<double>>(g, std::move(dofs), W->sub({1})));

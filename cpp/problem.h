@@ -5,6 +5,7 @@
 #pragma once
 
 #include "config.h"
+#include "manufactured_solution.h"
 #include "mesh.h"
 
 #include <array>
@@ -51,6 +52,9 @@ struct Problem
   std::shared_ptr<fem::Form<double>> F, J, J_contact;
   std::array<std::shared_ptr<fem::Form<double>>, 2> contact_force;
   std::shared_ptr<fem::Expression<double>> D_expr, stress_expr;
+  /// Set with the config key "manufactured": its residual replaces the
+  /// model's F, its exact fields are the "exact" Dirichlet data
+  std::unique_ptr<ManufacturedSolution> manufactured;
 
   std::vector<std::shared_ptr<const fem::DirichletBC<double>>> bcs;
   std::vector<std::int32_t> bc_dofs; ///< W-dofs of every Dirichlet condition

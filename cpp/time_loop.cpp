@@ -251,6 +251,8 @@ json run(const json& cfg, const std::filesystem::path& out_dir, MPI_Comm comm,
   {
     const auto [t, k] = steps.attempt();
     problem.constants.at("k")->value[0] = k;
+    if (problem.manufactured)
+      problem.manufactured->set_time(t); // loads and Dirichlet data at t_n
     // Predictor u^0 = u_{n-1} + k du_{n-1}, phi^0 = phi_{n-1}; then the BCs
     for (auto d : problem.u_dofs)
       xa[d] = xp[d] + k / steps.k_last * (xp[d] - x_prev2[d]);
@@ -302,6 +304,8 @@ json run(const json& cfg, const std::filesystem::path& out_dir, MPI_Comm comm,
                             system.factorisation.count - f0);
     step["krylov_iterations"] = newton.krylov_iterations(); // 1 per solve with LU
     step["k"] = k;
+    if (problem.manufactured)
+      step["errors"] = problem.manufactured->errors(comm);
     std::copy(xp.begin(), xp.end(), x_prev2.begin());
     std::copy(xa.begin(), xa.end(), xp.begin());
     writer.write_step(steps.accepted, t, steps.done());

@@ -37,11 +37,21 @@ def strain_voigt(v):
     return ufl.as_vector([eps[0, 0], eps[1, 1], 2 * eps[0, 1]])
 
 
-def stress_voigt(u, u_prev, phi, data):
-    """Total stress (2.1) in Voigt form: Bv s(u) + Av s(du/dt) + e^T grad phi."""
-    s_rate = strain_voigt((u - u_prev) / data["k"])
-    return (ufl.dot(data["Bv"], strain_voigt(u)) + ufl.dot(data["Av"], s_rate)
+def velocity(u, u_prev, data):
+    """Backward-Euler velocity (u_n - u_{n-1}) / k."""
+    return (u - u_prev) / data["k"]
+
+
+def stress_voigt(u, u_dot, phi, data):
+    """Total stress (2.1) in Voigt form [s_xx, s_yy, s_xy]:
+    Bv s(u) + Av s(u_dot) + e^T grad phi, u_dot the velocity."""
+    return (ufl.dot(data["Bv"], strain_voigt(u)) + ufl.dot(data["Av"], strain_voigt(u_dot))
             + ufl.dot(ufl.transpose(data["e"]), ufl.grad(phi)))
+
+
+def voigt_to_tensor(s):
+    """The symmetric 2x2 tensor of a Voigt stress [s_xx, s_yy, s_xy]."""
+    return ufl.as_matrix([[s[0], s[2]], [s[2], s[1]]])
 
 
 def electric_displacement(u, phi, data):
@@ -73,7 +83,7 @@ def residual(x, x_prev, y, ds, data):
     dx = ufl.dx(domain=x.ufl_domain())
 
     # (3.3): viscous + elastic + piezoelectric coupling = body force
-    F = ufl.inner(stress_voigt(u, u_prev, phi, data), strain_voigt(w)) * dx
+    F = ufl.inner(stress_voigt(u, velocity(u, u_prev, data), phi, data), strain_voigt(w)) * dx
     F -= ufl.inner(data["f0"], w) * dx
     # (3.4): permittivity - piezoelectric coupling = free charge, with the
     # right-hand side of (2.19) as the paper writes it

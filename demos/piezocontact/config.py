@@ -86,8 +86,13 @@ def _check_bounds(v, rule, path, source):
 def _check(value, rule, path, source):
     """Validate `value` against `rule`; return it with defaults filled in."""
     t = rule["type"]
+    alternative = rule.get("alternative")  # a word allowed instead of the value
+    if alternative is not None and value == alternative:
+        return value
 
     def wrong(expected):
+        if alternative is not None:
+            expected += f" or {_fmt(alternative)}"
         return ConfigError(f"{source}: {path} = {_fmt(value)}: expected {expected}")
 
     if t == "object":
@@ -187,6 +192,32 @@ def _check_semantics(cfg, source):
             raise ConfigError(f"{source}: {where}: traction and contact are exclusive")
         if "potential" in bc and "surface_charge" in bc:
             raise ConfigError(f"{source}: {where}: potential and surface_charge are exclusive")
+    _check_manufactured(cfg, source)
+
+
+def _check_manufactured(cfg, source):
+    """A manufactured solution brings its own loads and Dirichlet data;
+    "exact" boundary values need one."""
+    mms = "manufactured" in cfg
+    unused = "not used with a manufactured solution (its loads come from the exact solution)"
+    if mms:
+        for key, zero in (("body_force", [0.0, 0.0]), ("charge_density", 0.0)):
+            if cfg["loads"][key] != zero:
+                raise ConfigError(f"{source}: loads.{key} = {_fmt(cfg['loads'][key])}: {unused}")
+    for name, bc in cfg["boundaries"].items():
+        for key in ("displacement", "potential"):
+            if key not in bc:
+                continue
+            where = f"boundaries.{name}.{key} = {_fmt(bc[key])}"
+            if bc[key] == "exact" and not mms:
+                raise ConfigError(f"{source}: {where}: needs the key manufactured "
+                                  "(the exact solution to take it from)")
+            if bc[key] != "exact" and mms:
+                raise ConfigError(f"{source}: {where}: with a manufactured solution the "
+                                  "Dirichlet data are the exact solution's: use \"exact\"")
+        for key in ("traction", "surface_charge"):
+            if mms and key in bc:
+                raise ConfigError(f"{source}: boundaries.{name}.{key}: {unused}")
 
 
 def _check_symmetric(m, path, source):

@@ -82,7 +82,7 @@ class Problem:
         u_prev, _ = ufl.split(self.x_prev)
         midpoint = np.array([[1.0 / 3.0, 1.0 / 3.0]])
         self.D_expr = fem.Expression(pf.electric_displacement(u, phi, self.data), midpoint)
-        self.stress_expr = fem.Expression(pf.stress_voigt(u, u_prev, phi, self.data), midpoint)
+        self.stress_expr = fem.Expression(pf.stress_voigt(u, pf.velocity(u, u_prev, self.data), phi, self.data), midpoint)
 
     def update_fields(self):
         """Copy the mixed solution into the collapsed u and phi."""
