@@ -30,7 +30,6 @@
 import argparse
 import math
 import os
-import subprocess
 import time
 from pathlib import Path
 
@@ -42,22 +41,16 @@ import numpy as np  # noqa: E402
 import ufl  # noqa: E402
 from dolfinx import fem, geometry  # noqa: E402
 
-from piezocontact import compare  # noqa: E402
+from piezocontact import compare, runs  # noqa: E402
 
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent
-ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
 
 
 def solve(solver, n, out, build):
-    exe = {"cpp": [str(Path(build) / "piezo-contact")],
-           "python": ["/usr/bin/python3", str(HERE / "piezo_contact.py")]}[solver]
-    cmd = exe + ["--config", str(HERE / "square.json"), "--output", str(out), "--quiet"]
-    for o in (f"mesh.n={n}", f"time.steps={n}", "output.xdmf=false", "output.nodal=all"):
-        cmd += ["--set", o]
-    t0 = time.perf_counter()
-    subprocess.run(cmd, check=True, env=ENV)
-    return compare.load_summary(out), time.perf_counter() - t0
+    return runs.run_quietly(solver, HERE / "square.json", out,
+                            [f"mesh.n={n}", f"time.steps={n}", "output.xdmf=false",
+                             "output.nodal=all"], build)
 
 
 class Level:
@@ -114,8 +107,7 @@ def max_error(coarse, fine, transfer):
 
 
 def rates(errors):
-    return [None] + [math.log2(a / b) if a > 0 and b > 0 else None
-                     for a, b in zip(errors, errors[1:])]
+    return runs.observed_rates([2.0 ** -i for i in range(len(errors))], errors)
 
 
 def fmt(r):

@@ -52,7 +52,8 @@ class RunState:
         D.interpolate(fem.Expression(pf.electric_displacement(u, phi, data), midpoint))
         self.D = D.x.array.reshape(-1, 2).copy()
         stress = fem.Function(fem.VectorFunctionSpace(msh, ("DG", 0), dim=3))
-        stress.interpolate(fem.Expression(pf.stress_voigt(u, pf.velocity(u, u_prev, data), phi, data), midpoint))
+        sigma = pf.stress_voigt(u, pf.velocity(u, u_prev, data), phi, data)
+        stress.interpolate(fem.Expression(sigma, midpoint))
         s = stress.x.array.reshape(-1, 3)
         # von Mises of the in-plane total stress (the plane model carries no s_zz)
         self.von_mises = np.sqrt(s[:, 0] ** 2 - s[:, 0] * s[:, 1] + s[:, 1] ** 2

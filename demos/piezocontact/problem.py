@@ -11,6 +11,7 @@ from dolfinx import fem
 
 from . import meshing
 from .config import ConfigError
+from .manufactured_solution import ManufacturedSolution, add_constants
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "forms"))
 import piezo_forms as pf  # noqa: E402
@@ -60,18 +61,27 @@ class Problem:
         self.x_prev = fem.Function(self.W, name="x_prev")
 
         self.data = make_constants(self.mesh, cfg, self.tag_of)
-
-        ds = ufl.Measure("ds", domain=self.mesh, subdomain_data=self.facet_tags)
-        self.F_ufl = pf.residual(self.x, self.x_prev, ufl.TestFunction(self.W), ds, self.data)
-        self.J_ufl = pf.jacobian(self.F_ufl, self.x, ufl.TrialFunction(self.W))
-        self.contact_force_forms = [fem.form(pf.contact_force(self.x, ds, self.data, i))
-                                    for i in range(2)]
-        self.F_form = fem.form(self.F_ufl)
-
         # Sub-spaces: collapsed spaces and their dofs in W
         self.V_u, self.u_dofs = self.W.sub(0).collapse()
         self.V_phi, self.phi_dofs = self.W.sub(1).collapse()
         self.u_dofs, self.phi_dofs = np.asarray(self.u_dofs), np.asarray(self.phi_dofs)
+
+        ds = ufl.Measure("ds", domain=self.mesh, subdomain_data=self.facet_tags)
+        y = ufl.TestFunction(self.W)
+        self.manufactured = None
+        if "manufactured" in cfg:
+            # its residual replaces the model's; its exact fields are the
+            # "exact" Dirichlet data
+            add_constants(self.mesh, self.data, cfg["manufactured"])
+            self.manufactured = ManufacturedSolution(self.x, self.x_prev, y, ds, self.data,
+                                                     self.V_u, self.V_phi)
+            self.F_ufl = self.manufactured.F_ufl
+        else:
+            self.F_ufl = pf.residual(self.x, self.x_prev, y, ds, self.data)
+        self.J_ufl = pf.jacobian(self.F_ufl, self.x, ufl.TrialFunction(self.W))
+        self.contact_force_forms = [fem.form(pf.contact_force(self.x, ds, self.data, i))
+                                    for i in range(2)]
+        self.F_form = fem.form(self.F_ufl)
         self.bcs, self.clamped_dofs = self._dirichlet_bcs()
         # Collapsed copies of the solution, for evaluation and output
         self.u = fem.Function(self.V_u, name="u")
@@ -82,7 +92,8 @@ class Problem:
         u_prev, _ = ufl.split(self.x_prev)
         midpoint = np.array([[1.0 / 3.0, 1.0 / 3.0]])
         self.D_expr = fem.Expression(pf.electric_displacement(u, phi, self.data), midpoint)
-        self.stress_expr = fem.Expression(pf.stress_voigt(u, pf.velocity(u, u_prev, self.data), phi, self.data), midpoint)
+        stress = pf.stress_voigt(u, pf.velocity(u, u_prev, self.data), phi, self.data)
+        self.stress_expr = fem.Expression(stress, midpoint)
 
     def update_fields(self):
         """Copy the mixed solution into the collapsed u and phi."""
@@ -101,8 +112,11 @@ class Problem:
         for name, bc in sorted(self.cfg["boundaries"].items()):
             facets = self.boundary_facets(name)
             if "displacement" in bc:
-                g = fem.Function(self.V_u)
-                g.x.array.reshape(-1, 2)[:] = bc["displacement"]
+                if bc["displacement"] == "exact":
+                    g = self.manufactured.u_exact  # updated every step
+                else:
+                    g = fem.Function(self.V_u)
+                    g.x.array.reshape(-1, 2)[:] = bc["displacement"]
                 dofs = fem.locate_dofs_topological((self.W.sub(0), self.V_u), 1, facets)
                 bcs.append(fem.dirichletbc(g, dofs, self.W.sub(0)))
                 self.bc_dofs.append(dofs[0])
@@ -111,8 +125,11 @@ class Problem:
                         (self.W.sub(0).sub(i), self.V_u.sub(i).collapse()[0]), 1, facets)[0]
                     for i in range(2)]
             if "potential" in bc:
-                g = fem.Function(self.V_phi)
-                g.x.array[:] = bc["potential"]
+                if bc["potential"] == "exact":
+                    g = self.manufactured.phi_exact  # updated every step
+                else:
+                    g = fem.Function(self.V_phi)
+                    g.x.array[:] = bc["potential"]
                 dofs = fem.locate_dofs_topological((self.W.sub(1), self.V_phi), 1, facets)
                 bcs.append(fem.dirichletbc(g, dofs, self.W.sub(1)))
                 self.bc_dofs.append(dofs[0])

@@ -1,6 +1,7 @@
 """Run the C++ solver and the Python twin on one config and report how they
 compare: the engine of the demos."""
 
+import math
 import os
 import subprocess
 import time
@@ -18,9 +19,30 @@ def solver_commands(build_dir, np_):
             "python": mpi + ["/usr/bin/python3", str(DEMOS / "piezo_contact.py")]}
 
 
+ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+
+
+def run_quietly(solver, config, out_dir, overrides, build_dir):
+    """One serial run without progress lines; (summary, wall seconds)."""
+    args = solver_commands(build_dir, 1)[solver] + [
+        "--config", str(config), "--output", str(out_dir), "--quiet"]
+    for o in overrides:
+        args += ["--set", o]
+    t0 = time.perf_counter()
+    subprocess.run(args, check=True, env=ENV)
+    return compare.load_summary(out_dir), time.perf_counter() - t0
+
+
+def observed_rates(sizes, errors):
+    """log(e_i / e_{i+1}) / log(s_i / s_{i+1}) between successive runs;
+    None first (and where an error is zero)."""
+    return [None] + [math.log(e0 / e1) / math.log(s0 / s1) if e0 > 0 and e1 > 0 else None
+                     for s0, s1, e0, e1 in zip(sizes, sizes[1:], errors, errors[1:])]
+
+
 def run_both(config, out_dir, overrides, build_dir, np_=1):
     """Run C++ then Python on one config; return their summaries."""
-    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    env = ENV
     summaries = {}
     for name, cmd in solver_commands(build_dir, np_).items():
         args = cmd + ["--config", str(config), "--output", str(Path(out_dir) / name)]

@@ -120,6 +120,8 @@ def run(cfg, out_dir, comm, progress=True, source="config"):
     while not steps.done():
         t, k = steps.attempt()
         problem.data["k"].value = k
+        if problem.manufactured:
+            problem.manufactured.set_time(t)  # loads and Dirichlet data at t_n
         # Predictor u^0 = u_{n-1} + k du_{n-1}, phi^0 = phi_{n-1}; then the BCs
         x.x.array[u] = x_prev.x.array[u] + k / steps.k_last * (x_prev.x.array[u] - x_prev2[u])
         fem.petsc.set_bc(x.vector, problem.bcs)
@@ -156,6 +158,8 @@ def run(cfg, out_dir, comm, progress=True, source="config"):
         step = _step_record(problem, probes, contact, monitor, nl, t, its,
                             nl.ops["jacobian"]["count"] - j0)
         step["k"] = k
+        if problem.manufactured:
+            step["errors"] = problem.manufactured.errors(comm)
         x_prev2[:] = x_prev.x.array
         x_prev.x.array[:] = x.x.array
         writer.write_step(steps.accepted, t, final=steps.done())
