@@ -15,6 +15,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 SQUARE = ROOT / "demos" / "square.json"
 CONTACTOR = ROOT / "demos" / "contactor.json"
+MMS = ROOT / "demos" / "manufactured.json"
+UNUSED = "not used with a manufactured solution (its loads come from the exact solution)"
 
 # name: (config, --set overrides, expected part of the message)
 CASES = {
@@ -54,6 +56,24 @@ CASES = {
     "malformed JSON": ("BROKEN_JSON", [], "invalid JSON at line 2 column 42: "),
     "config file missing": ("MISSING", [], "cannot read config file: No such file or directory"),
     "missing required key": ("NO_CP", [], "contact.c_p: missing required key"),
+    "Dirichlet value neither numbers nor \"exact\"": (
+        SQUARE, ["boundaries.left.displacement=5"],
+        "boundaries.left.displacement = 5: expected a list of 2 numbers or \"exact\""),
+    "\"exact\" without a manufactured solution": (
+        SQUARE, ["boundaries.left.potential=exact"],
+        "boundaries.left.potential = \"exact\": needs the key manufactured "
+        "(the exact solution to take it from)"),
+    "unknown manufactured profile": (MMS, ["manufactured.space=quadratic"],
+                                     "manufactured.space = \"quadratic\": expected one of "
+                                     "linear, smooth"),
+    "a load with a manufactured solution": (MMS, ["loads.body_force=[1,0]"],
+                                            f"loads.body_force = [1.0,0.0]: {UNUSED}"),
+    "a traction with a manufactured solution": (MMS, ["boundaries.top.traction=[0,-10]"],
+                                                f"boundaries.top.traction: {UNUSED}"),
+    "numeric Dirichlet data with a manufactured solution": (
+        MMS, ["boundaries.top.potential=3"],
+        "boundaries.top.potential = 3.0: with a manufactured solution the Dirichlet data "
+        "are the exact solution's: use \"exact\""),
 }
 
 
