@@ -87,10 +87,42 @@ class Transfer:
         return out
 
 
-def h1_error(a, b):
+def h1_error(a, b, weight=1.0):
     e = a - b
     return math.sqrt(fem.assemble_scalar(fem.form(
-        (ufl.inner(e, e) + ufl.inner(ufl.grad(e), ufl.grad(e))) * ufl.dx)))
+        weight * (ufl.inner(e, e) + ufl.inner(ufl.grad(e), ufl.grad(e))) * ufl.dx)))
+
+
+# Where the error lives: discs of radius 1/4 around each corner of the
+# square (named by the edges that meet there), and the rest
+CORNERS = {"(0,0) clamped/contact": (0.0, 0.0), "(0,1) clamped/loaded": (0.0, 1.0),
+           "(1,0) contact/free": (1.0, 0.0), "(1,1) loaded/free": (1.0, 1.0)}
+RADIUS = 0.25
+
+
+def region_indicators(level):
+    """DG0 indicator of each region on a level's mesh (by cell midpoint)."""
+    msh = level.fields.mesh
+    Q = fem.FunctionSpace(msh, ("DG", 0))
+    mid = Q.tabulate_dof_coordinates()[:, :2]
+    near = {name: np.hypot(*(mid - c).T) < RADIUS for name, c in CORNERS.items()}
+    near["rest"] = ~np.logical_or.reduce(list(near.values()))
+    out = {}
+    for name, mask in near.items():
+        out[name] = fem.Function(Q)
+        out[name].x.array[:] = mask.astype(float)
+    return out
+
+
+def regional_errors(coarse, fine, transfer):
+    """H1 errors of u and phi at t = 1 restricted to each region (against
+    the finer run), to see where the error of the successive levels lives."""
+    weights = region_indicators(fine)
+    j = coarse.n
+    pairs = {name: (transfer(coarse.field(j, name), name), fine.field(fine.n, name))
+             for name in ("u", "phi")}
+    return {region: {name: h1_error(*pairs[name], weight=w) for name in pairs}
+            for region, w in weights.items()}
 
 
 def max_error(coarse, fine, transfer):
@@ -150,6 +182,18 @@ def main():
         lines.append(f"| 1/{n} | {dofs[n]} | {p['sum']:.3e} | {fmt(r_sum[i])} | {p['u']:.3e} "
                      f"| {fmt(r_u[i])} | {p['phi']:.3e} | {fmt(r_phi[i])} | {s['sum']:.3e} "
                      f"| {fmt(r_succ[i])} |")
+    regional = {n: regional_errors(levels[n], levels[2 * n], Transfer(levels[n], levels[2 * n]))
+                for n in coarse}
+    regions = list(regional[coarse[0]])
+    for name, unit in (("phi", "V"), ("u", "m")):
+        lines += ["", f"Where the error lives: H1 error of {name} ({unit}) at t = 1, n vs 2n, "
+                  f"in discs of radius {RADIUS} around each corner and in the rest (rate)",
+                  "| h = k | " + " | ".join(regions) + " |", "|---|" + "---|" * len(regions)]
+        r_region = {r: rates([regional[n][r][name] for n in coarse]) for r in regions}
+        for i, n in enumerate(coarse):
+            lines.append(f"| 1/{n} | " + " | ".join(
+                f"{regional[n][r][name]:.2e} ({fmt(r_region[r][i]) or '-'})" for r in regions)
+                + " |")
     total = time.perf_counter() - t0
     lines.append(f"\nsolves {solve_s:.1f} s, whole study {total:.1f} s")
     print("\n".join(lines))

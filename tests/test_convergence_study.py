@@ -45,8 +45,8 @@ def test_transfer_between_nested_meshes_is_exact(study):
 
 
 def test_errors_decrease_with_h_and_k(study):
-    rows = [line.split("|") for line in (study / "table.md").read_text().splitlines()
-            if line.startswith("| 1/")]
+    first_table = (study / "table.md").read_text().split("\n\n")[0]
+    rows = [line.split("|") for line in first_table.splitlines() if line.startswith("| 1/")]
     errors = [float(r[3]) for r in rows]
     successive = [float(r[9]) for r in rows]
     assert all(b < a for a, b in zip(errors, errors[1:])), errors
@@ -54,3 +54,18 @@ def test_errors_decrease_with_h_and_k(study):
     # the last level's error against the reference is its difference to it
     assert errors[-1] == pytest.approx(successive[-1], rel=1e-12)
     assert (study / "figure3.png").stat().st_size > 10_000
+
+
+def test_regions_partition_the_error(study):
+    """The corner discs and the rest split the domain: their squared H1
+    errors add up to the whole one (so the localisation misses nothing)."""
+    from convergence_study import Level, Transfer, h1_error, regional_errors
+    level = {n: Level(study / f"n{n}", compare.load_summary(study / f"n{n}")) for n in (4, 8)}
+    transfer = Transfer(level[4], level[8])
+    parts = regional_errors(level[4], level[8], transfer)
+    assert len(parts) == 5
+    for name in ("u", "phi"):
+        whole = h1_error(transfer(level[4].field(4, name), name), level[8].field(8, name))
+        assert math.fsum(p[name] ** 2 for p in parts.values()) == pytest.approx(whole ** 2,
+                                                                               rel=1e-12)
+        assert min(p[name] for p in parts.values()) > 0
