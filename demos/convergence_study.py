@@ -173,7 +173,7 @@ def main():
     r_phi = rates([paper[n]["phi"] for n in coarse])
     r_succ = rates([successive[n]["sum"] for n in coarse])
     lines = [f"Example 1, {args.solver} solver, reference h = k = 1/{ns[-1]} "
-             f"({dofs[ns[-1]]} dofs); errors in H1, max over time steps",
+             f"({dofs[ns[-1]]} dofs); errors in H1, max over time steps", "",
              "| h = k | dofs | error u+phi vs ref | rate | error u (m) | rate | "
              "error phi (V) | rate | n vs 2n (u+phi) | rate |",
              "|---|---|---|---|---|---|---|---|---|---|"]
@@ -187,7 +187,7 @@ def main():
     regions = list(regional[coarse[0]])
     for name, unit in (("phi", "V"), ("u", "m")):
         lines += ["", f"Where the error lives: H1 error of {name} ({unit}) at t = 1, n vs 2n, "
-                  f"in discs of radius {RADIUS} around each corner and in the rest (rate)",
+                  f"in discs of radius {RADIUS} around each corner and in the rest (rate)", "",
                   "| h = k | " + " | ".join(regions) + " |", "|---|" + "---|" * len(regions)]
         r_region = {r: rates([regional[n][r][name] for n in coarse]) for r in regions}
         for i, n in enumerate(coarse):

@@ -14,8 +14,9 @@
 # phi = PHI0 theta(t) Phi(x). Every kind of boundary condition is on: u and
 # phi Dirichlet (left, from the exact solution at t_n), phi Dirichlet (top),
 # tractions (top, right), surface charges (right, bottom) and the foundation
-# on the bottom, where the gap g = 2e-11 m closes at t = 0.4 and the contact
-# zone then grows to half of Gamma_C: the penalty is part of the balance.
+# on the bottom, where the gap g = 2e-11 m closes when theta = 0.4 and the
+# contact zone then grows to 30 % (linear U) or half (smooth U) of Gamma_C:
+# the penalty is part of the balance.
 #
 # Three studies, errors `max_n ||x_n - x(t_n)||` in L2 and H1, u and phi apart:
 #
@@ -89,7 +90,7 @@ def table(study, solver, rows, rates):
     _, _, refined, expected = STUDIES[study]
     fixed = {"h": f", k = 1/{H_STUDY_STEPS}", "k": f", h = 1/{K_STUDY_N}", "h = k": ""}[study]
     lines = [f"Study {study} ({solver}): {STUDIES[study][0]} in space, {STUDIES[study][1]} "
-             f"in time{fixed}; expected rates L2 {expected['L2']}, H1 {expected['H1']}",
+             f"in time{fixed}; expected rates L2 {expected['L2']}, H1 {expected['H1']}", "",
              f"| {refined} | dofs | u L2 (m) | rate | u H1 (m) | rate | phi L2 (V) | rate "
              "| phi H1 (V) | rate | wall (s) |",
              "|---|---|---|---|---|---|---|---|---|---|---|"]

@@ -37,7 +37,7 @@ def test_linear_solution_is_reproduced_to_round_off(solver, tmp_path, np_, gap, 
     integrates them exactly, so the discrete solution is the exact one up to
     round-off (measured ~1e-15 relative; 1e-12 leaves room for the condition
     of the coupled system, while any O(h) or O(k) error would be >= 1e-3).
-    With g = 2e-11 m the contact zone opens at t = 0.4 and covers a third
+    With g = 2e-11 m the contact zone opens at t = 0.4 and covers 30 %
     of Gamma_C at t = 1: the kink of max(r, 0) then sits inside facets, and
     the forms' contact quadrature integrates it the same way for the exact
     and the discrete field."""
