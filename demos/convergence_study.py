@@ -153,6 +153,8 @@ def main():
     ap.add_argument("--output", default=str(ROOT / "out" / "convergence"))
     ap.add_argument("--build", default=os.environ.get("PIEZO_BUILD", str(ROOT / "build")))
     args = ap.parse_args()
+    if args.finest < 4 or args.finest & (args.finest - 1):
+        ap.error(f"--finest {args.finest}: must be a power of 2, at least 4")
     ns = [2 ** i for i in range(1, int(math.log2(args.finest)) + 1)]
     t0 = time.perf_counter()
     levels, dofs = {}, {}
