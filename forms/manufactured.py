@@ -29,7 +29,7 @@ U0 = 1e-10  # size of the exact displacement (m): Bv eps(u) ~ e grad(phi) ~ 10 P
 PHI0 = 1.0  # size of the exact potential (V)
 
 # Quadrature degree of the loads and the errors. UFL's estimate for the
-# trigonometric terms is 8-12 (a third of a run's time at 1/128); degree 4
+# trigonometric terms is 8-12 (half of a run's time at 1/128); degree 4
 # integrates the loads against P1 test functions and the squared errors with
 # quadrature errors far below the P1 errors measured, and the linear
 # solution's exactly.
