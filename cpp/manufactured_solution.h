@@ -27,12 +27,12 @@ class ManufacturedSolution
 public:
   /// `constants` must hold the model's and manufactured.py's Constants
   /// (t, space_smooth, time_smooth); the switches are set here from `settings`.
-  ManufacturedSolution(const json& settings, std::shared_ptr<const fem::FunctionSpace> W,
-               std::shared_ptr<const fem::FunctionSpace> V_u,
-               std::shared_ptr<const fem::FunctionSpace> V_phi,
-               const Coefficients& coefficients,
-               const std::map<std::string, std::shared_ptr<fem::Constant<double>>>& constants,
-               const mesh::MeshTags<std::int32_t>& facet_tags);
+  ManufacturedSolution(
+      const json& settings, std::shared_ptr<const fem::FunctionSpace> W,
+      std::shared_ptr<const fem::FunctionSpace> V_u,
+      std::shared_ptr<const fem::FunctionSpace> V_phi, const Coefficients& coefficients,
+      const std::map<std::string, std::shared_ptr<fem::Constant<double>>>& constants,
+      const mesh::MeshTags<std::int32_t>& facet_tags);
 
   /// Set the time of the loads and interpolate the exact fields at t
   void set_time(double t);

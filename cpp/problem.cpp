@@ -70,10 +70,8 @@ Problem::Problem(const json& cfg_, MPI_Comm comm_, const std::string& source,
     add_constants(forms::manufactured_constant_shapes);
   set_constants();
 
-  const std::map<std::string, std::shared_ptr<const fem::Function<double>>>
-      coefficients = {{"x", x}, {"x_prev", x_prev}};
-  const std::map<std::string, std::shared_ptr<const fem::Constant<double>>>
-      consts(constants.begin(), constants.end());
+  const Coefficients coefficients = {{"x", x}, {"x_prev", x_prev}};
+  const Constants consts(constants.begin(), constants.end());
   const std::map<fem::IntegralType, const mesh::MeshTags<int>*> subdomains
       = {{fem::IntegralType::exterior_facet, facet_tags.get()}};
   if (is_manufactured)
