@@ -3,10 +3,15 @@
 // Fernandez & Ouafik 2008), on the ffcx-compiled forms of forms/.
 //
 //   piezo-contact --config FILE --output DIR [--set key.path=value ...] [--quiet]
+//   piezo-contact --output DIR --resume [--quiet]
 //
-// Exit codes: 0 success, 2 bad input (config, output directory), 3 the
-// solver failed (Newton did not converge).
+// Exit codes: 0 success, 2 bad input (config, output directory, nothing to
+// resume), 3 the solver failed (Newton did not converge), 4 an output file
+// could not be written (disk full), 128 + signal number when stopped by
+// SIGINT (130) or SIGTERM (143).
 #include "config.h"
+#include "interrupt.h"
+#include "output.h"
 #include "time_loop.h"
 
 #include <dolfinx/common/log.h>
@@ -19,7 +24,36 @@ namespace
 {
 const char* usage
     = "usage: piezo-contact --config FILE --output DIR [--set KEY.PATH=VALUE ...] "
-      "[--quiet]\n";
+      "[--quiet]\n"
+      "       piezo-contact --output DIR --resume [--quiet]\n";
+
+/// The summary.json of an interrupted or failed run in DIR, to continue it
+piezo::json resumable_summary(const std::filesystem::path& dir)
+{
+  const auto path = dir / "summary.json";
+  std::ifstream in(path);
+  if (!in)
+    throw piezo::ConfigError(path.string() + ": cannot resume: no such file");
+  piezo::json summary;
+  try
+  {
+    summary = piezo::json::parse(in);
+  }
+  catch (const piezo::json::exception& e)
+  {
+    throw piezo::ConfigError(path.string() + ": cannot resume: not valid JSON");
+  }
+  if (summary.value("solver", "") != "cpp")
+    throw piezo::ConfigError(path.string() + ": cannot resume: solver = "
+                             + summary.value("solver", piezo::json(nullptr)).dump()
+                             + ", this is the C++ solver");
+  if (!summary.contains("checkpoint") or !summary.contains("config"))
+    throw piezo::ConfigError(path.string()
+                             + ": cannot resume: no checkpoint (an older version wrote it)");
+  if (summary.value("status", "") == "completed")
+    throw piezo::ConfigError(path.string() + ": cannot resume: status = \"completed\"");
+  return summary;
+}
 
 /// Create DIR and check that it can be written, on rank 0; every rank then
 /// gets the same error, so that none waits for the others forever.
@@ -59,12 +93,14 @@ int main(int argc, char* argv[])
 {
   dolfinx::init_logging(argc, argv);
   PetscInitialize(&argc, &argv, nullptr, nullptr);
+  piezo::install_interrupt_handlers(); // after PETSc's, which would abort
+  piezo::silence_hdf5_errors();        // failures are reported in one line
   int rank;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   int code = 0;
   std::string config_path, output_dir;
   std::vector<std::string> overrides;
-  bool quiet = false;
+  bool quiet = false, resume = false;
   for (int i = 1; i < argc; ++i)
   {
     const std::string a = argv[i];
@@ -76,6 +112,8 @@ int main(int argc, char* argv[])
       overrides.push_back(argv[++i]);
     else if (a == "--quiet")
       quiet = true;
+    else if (a == "--resume")
+      resume = true;
     else if (a == "-h" or a == "--help")
     {
       if (rank == 0)
@@ -86,19 +124,35 @@ int main(int argc, char* argv[])
     else if (a.rfind("-dolfinx_", 0) == 0 or a.rfind("-", 0) == 0)
       continue; // PETSc / dolfinx options are read from the database
   }
-  if (config_path.empty() or output_dir.empty())
+  const char* bad_args = nullptr;
+  if (output_dir.empty())
+    bad_args = "--output is required";
+  else if (resume and (!config_path.empty() or !overrides.empty()))
+    bad_args = "--resume takes the config from DIR/summary.json: no --config, no --set";
+  else if (!resume and config_path.empty())
+    bad_args = "--config is required";
+  if (bad_args)
   {
     if (rank == 0)
-      std::cerr << usage << "error: --config and --output are required\n";
+      std::cerr << usage << "error: " << bad_args << "\n";
     PetscFinalize();
     return piezo::exit_config_error;
   }
 
   try
   {
-    const piezo::json cfg = piezo::load_config(config_path, overrides);
-    prepare_output(output_dir, config_path, MPI_COMM_WORLD);
-    piezo::run(cfg, output_dir, MPI_COMM_WORLD, !quiet, config_path);
+    if (resume)
+    {
+      const piezo::json summary = resumable_summary(output_dir);
+      piezo::run(summary["config"], output_dir, MPI_COMM_WORLD, !quiet,
+                 summary["config_file"].get<std::string>(), &summary);
+    }
+    else
+    {
+      const piezo::json cfg = piezo::load_config(config_path, overrides);
+      prepare_output(output_dir, config_path, MPI_COMM_WORLD);
+      piezo::run(cfg, output_dir, MPI_COMM_WORLD, !quiet, config_path);
+    }
   }
   catch (const piezo::ConfigError& e)
   {
@@ -111,6 +165,18 @@ int main(int argc, char* argv[])
     if (rank == 0)
       std::cerr << "error: " << e.what() << std::endl;
     code = piezo::exit_run_error;
+  }
+  catch (const piezo::OutputError& e)
+  {
+    if (rank == 0)
+      std::cerr << "error: " << e.what() << std::endl;
+    code = piezo::exit_output_error;
+  }
+  catch (const piezo::Interrupted& e)
+  {
+    if (rank == 0)
+      std::cerr << e.what() << std::endl;
+    code = piezo::exit_code_of_signal(e.signum);
   }
   catch (const std::exception& e)
   {

@@ -129,6 +129,9 @@ void NonlinearSystem::J(const Vec, Mat M)
     Timer timer(jacobian);
     assemble_into(M, *_p.J, _p.bcs, *_p.W);
   }
+  const auto x = _p.x->x()->array();
+  x_assembled.assign(x.begin(), x.end());
+  k_assembled = _k_last;
   _monitor.set_scaling(M);
   // Factorise here, timed apart from the triangular solves of KSPSolve
   Timer timer(factorisation);

@@ -40,6 +40,10 @@ public:
   int reused = 0; ///< Newton iterations that kept the last factorisation
   /// reaction of each clamped boundary at the last residual evaluation
   std::map<std::string, std::array<double, 2>> reactions;
+  /// The iterate (local dofs, with ghosts) and k at which the Jacobian in use
+  /// was assembled: a resumed run rebuilds the same matrix, LU and scaling
+  std::vector<double> x_assembled;
+  double k_assembled = 0.0;
 
 private:
   void record_reactions(Vec r);

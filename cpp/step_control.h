@@ -52,6 +52,20 @@ public:
     return "halve k";
   }
 
+  /// Nominal steps completed
+  int nominal_steps() const { return _n; }
+
+  /// Continue from a checkpoint: the state right after an accepted step
+  void restore(int nominal_steps, double t_, double k_, double k_last_, int accepted_)
+  {
+    _n = nominal_steps;
+    _halvings = 0;
+    t = t_;
+    k = k_;
+    k_last = k_last_;
+    accepted = accepted_;
+  }
+
   const int N, max_halvings;
 
 private:

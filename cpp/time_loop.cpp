@@ -2,6 +2,8 @@
 #include "diagnostics.h"
 #include "fieldwise.h"
 #include "nonlinear_system.h"
+#include "checkpoint.h"
+#include "interrupt.h"
 #include "output.h"
 #include "problem.h"
 #include "step_control.h"
@@ -114,6 +116,13 @@ json step_record(const Problem& problem, const Probes& probes,
   return step;
 }
 
+std::string numbered(const char* format, int n)
+{
+  char buf[64];
+  std::snprintf(buf, sizeof(buf), format, n);
+  return buf;
+}
+
 std::string sci(double v)
 {
   if (std::isnan(v))
@@ -171,14 +180,20 @@ void print_progress(int n, const json& step)
 } // namespace
 
 json run(const json& cfg, const std::filesystem::path& out_dir, MPI_Comm comm,
-         bool progress, const std::string& source)
+         bool progress, const std::string& source, const json* resume)
 {
   const auto t_start = Clock::now();
   int rank, size;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
 
-  const auto mesh_file = prepare_mesh(cfg, source, out_dir, comm);
+  std::optional<std::filesystem::path> mesh_file;
+  if (!resume)
+    mesh_file = prepare_mesh(cfg, source, out_dir, comm);
+  else if (!(*resume)["mesh_file"].is_null())
+    mesh_file = (*resume)["mesh_file"].get<std::string>();
+  if (mesh_file)
+    mesh_file = std::filesystem::absolute(*mesh_file);
   Problem problem(cfg, comm, source, mesh_file);
   Probes probes(problem, cfg["probes"], source);
   ContactGeometry contact(problem);
@@ -200,9 +215,12 @@ json run(const json& cfg, const std::filesystem::path& out_dir, MPI_Comm comm,
         VecGhostUpdateBegin(x, INSERT_VALUES, SCATTER_FORWARD);
         VecGhostUpdateEnd(x, INSERT_VALUES, SCATTER_FORWARD);
       });
-  // The built-in test keeps residual0 across solves and sees only u
+  // The built-in test keeps residual0 across solves and sees only u. A
+  // signal on any rank ends the solve too ("converged"; the loop then
+  // abandons the step), so that every rank stops at the same iteration.
+  int signal = 0;
   newton.set_convergence_check(
-      [&monitor, &problem](const nls::petsc::NewtonSolver&, const Vec r)
+      [&monitor, &problem, &signal](const nls::petsc::NewtonSolver&, const Vec r)
       {
         PetscInt n;
         VecGetLocalSize(r, &n);
@@ -213,7 +231,8 @@ json run(const json& cfg, const std::filesystem::path& out_dir, MPI_Comm comm,
         VecRestoreArrayRead(r, &ra);
         PetscReal norm;
         VecNorm(r, NORM_2, &norm);
-        return std::pair<double, bool>(norm, ok);
+        signal = agreed_interrupt(problem.comm);
+        return std::pair<double, bool>(norm, ok or signal != 0);
       });
   newton.max_it = newton_cfg["max_iterations"].get<int>();
   newton.report = false;
@@ -224,30 +243,115 @@ json run(const json& cfg, const std::filesystem::path& out_dir, MPI_Comm comm,
   newton.get_krylov_solver().set_from_options();
   set_field_splits(newton.get_krylov_solver().ksp(), problem);
 
-  Writer writer(problem, out_dir);
-  json summary = {{"solver", "cpp"},
-                  {"dofs", imap.size_global() * bs},
-                  {"mpi_size", size},
-                  {"config", cfg},
-                  {"mesh_file", mesh_file ? json(mesh_file->string()) : json(nullptr)},
-                  {"boundary_lengths",
-                   boundary_lengths({problem.mesh, problem.facet_tags, problem.tag_of}, comm)},
-                  {"steps", json::array()},
-                  {"timing", json::object()}};
+  json summary;
+  StepState state;
+  if (resume)
+  {
+    summary = *resume;
+    state = StepState::from_json(summary["checkpoint"]);
+    // What came after the checkpoint is done again
+    auto& steps = summary["steps"];
+    steps.erase(steps.begin() + state.step, steps.end());
+    auto& events = summary["events"];
+    events.erase(events.begin() + state.events, events.end());
+    summary.erase("error");
+    summary.erase("signal");
+    if (!summary.contains("resumed"))
+      summary["resumed"] = json::array();
+    summary["resumed"].push_back({{"step", state.step}, {"t", state.t}, {"mpi_size", size}});
+    summary["mpi_size"] = size;
+  }
+  else
+  {
+    summary = {{"solver", "cpp"},
+               {"dofs", imap.size_global() * bs},
+               {"mpi_size", size},
+               {"config", cfg},
+               {"config_file", std::filesystem::absolute(source).string()},
+               {"mesh_file", mesh_file ? json(mesh_file->string()) : json(nullptr)},
+               {"boundary_lengths",
+                boundary_lengths({problem.mesh, problem.facet_tags, problem.tag_of}, comm)},
+               {"steps", json::array()},
+               {"events", json::array()},
+               {"timing", json::object()}};
+  }
+  summary["status"] = "running";
+  const auto write_summary = [&]
+  { collectively(comm, rank == 0, [&] { write_json_atomic(out_dir / "summary.json", summary); }); };
+  // A write error ends the run; the summary says so if it can still be written
+  const auto fail_on_output = [&](const OutputError& e)
+  {
+    summary["status"] = "failed";
+    summary["error"] = e.what();
+    try
+    {
+      write_summary();
+    }
+    catch (const OutputError&)
+    {
+    }
+    VecDestroy(&x);
+    throw e;
+  };
 
   const double T = cfg["time"]["T"].get<double>();
   const int N = cfg["time"]["steps"].get<int>();
+  StepControl steps(T, N, newton_cfg["max_step_halvings"].get<int>());
   auto xa = problem.x->x()->mutable_array();
   auto xp = problem.x_prev->x()->mutable_array();
   std::vector<double> x_prev2(xp.begin(), xp.end()); // u_{n-2}, for the predictor
-  system.J(x, system.A); // initial scaling D (and first factorisation)
+  const auto checkpoint = [&]
+  {
+    StepState s{steps.accepted, steps.nominal_steps(), steps.t, steps.k, steps.k_last,
+                system.k_assembled, summary["events"].size(),
+                "checkpoint/" + numbered("state_%06d.npy", steps.accepted)};
+    if (rank == 0)
+      std::filesystem::create_directories(out_dir / "checkpoint");
+    write_states(out_dir / s.file, problem,
+                 {std::span<const double>(xp), x_prev2, system.x_assembled});
+    return s;
+  };
+  std::optional<Writer> writer;
+  try
+  {
+    writer.emplace(problem, out_dir, state.step);
+    if (resume)
+    {
+      // The Jacobian in use at the checkpoint, rebuilt where it was
+      // assembled: the same LU and convergence scaling as if never stopped
+      std::vector<double> xJ(xa.size());
+      try
+      {
+        read_states(out_dir / state.file, problem, {xp, x_prev2, xJ});
+      }
+      catch (const std::runtime_error& e)
+      {
+        throw ConfigError(std::string("cannot resume: ") + e.what());
+      }
+      std::copy(xJ.begin(), xJ.end(), xa.begin());
+      problem.constants.at("k")->value[0] = state.k_J;
+      system.J(x, system.A);
+      std::copy(xp.begin(), xp.end(), xa.begin());
+      steps.restore(state.nominal, state.t, state.k, state.k_last, state.step);
+      if (rank == 0 and progress)
+        std::printf("[cpp] resuming at step %d, t = %.6g\n", state.step, state.t);
+    }
+    else
+    {
+      system.J(x, system.A); // initial scaling D (and first factorisation)
+      state = checkpoint();
+    }
+    summary["checkpoint"] = state.to_json();
+    write_summary();
+  }
+  catch (const OutputError& e)
+  {
+    fail_on_output(e);
+  }
   const double callbacks_before = callback_seconds(system);
   double newton_s = 0.0;
   int newton_its = 0;
-  summary["status"] = "running";
-  summary["events"] = json::array();
-  StepControl steps(T, N, newton_cfg["max_step_halvings"].get<int>());
-  while (!steps.done())
+  while (!steps.done() and !(signal = agreed_interrupt(comm)))
   {
     const auto [t, k] = steps.attempt();
     problem.constants.at("k")->value[0] = k;
@@ -266,6 +370,12 @@ json run(const json& cfg, const std::filesystem::path& out_dir, MPI_Comm comm,
     problem.x->x()->scatter_fwd();
     newton_s += seconds_since(t0);
     newton_its += its;
+    if (signal)
+    {
+      std::copy(xp.begin(), xp.end(), xa.begin()); // the step is abandoned
+      problem.x->x()->scatter_fwd();
+      break;
+    }
     if (!converged)
     {
       const auto& last = monitor.history.back();
@@ -289,8 +399,13 @@ json run(const json& cfg, const std::filesystem::path& out_dir, MPI_Comm comm,
         summary["error"] = std::string(what) + "; gave up after "
                            + std::to_string(steps.max_halvings)
                            + " halvings of the time step";
-        if (rank == 0)
-          write_json_atomic(out_dir / "summary.json", summary);
+        try
+        {
+          write_summary();
+        }
+        catch (const OutputError&)
+        {
+        }
         VecDestroy(&x);
         throw NewtonFailure(summary["error"].get<std::string>());
       }
@@ -308,17 +423,57 @@ json run(const json& cfg, const std::filesystem::path& out_dir, MPI_Comm comm,
       step["errors"] = problem.manufactured->errors(comm);
     std::copy(xp.begin(), xp.end(), x_prev2.begin());
     std::copy(xa.begin(), xa.end(), xp.begin());
-    writer.write_step(steps.accepted, t, steps.done());
-    summary["steps"].push_back(step);
-    summary["status"] = steps.done() ? "completed" : "running";
-    summary["timing"] = timing(system, seconds_since(t_start), newton_s,
-                               callback_seconds(system) - callbacks_before, newton_its);
+    // Step files, then its checkpoint, then the summary that points to both:
+    // a kill at any instant leaves a summary whose every step is on disk
+    const StepState previous = state;
+    try
+    {
+      writer->write_step(steps.accepted, t, steps.done());
+      state = checkpoint();
+      summary["steps"].push_back(step);
+      summary["checkpoint"] = state.to_json();
+      summary["status"] = steps.done() ? "completed" : "running";
+      summary["timing"] = timing(system, seconds_since(t_start), newton_s,
+                                 callback_seconds(system) - callbacks_before, newton_its);
+      write_summary();
+    }
+    catch (const OutputError& e)
+    {
+      if (summary["steps"].size() > std::size_t(previous.step))
+        summary["steps"].erase(summary["steps"].end() - 1);
+      summary["checkpoint"] = previous.to_json();
+      if (rank == 0 and state.file != previous.file)
+      {
+        // unreferenced: its space may let the summary say what went wrong
+        std::error_code ec;
+        std::filesystem::remove(out_dir / state.file, ec);
+      }
+      fail_on_output(e);
+    }
     if (rank == 0)
     {
-      write_json_atomic(out_dir / "summary.json", summary);
+      std::error_code ec;
+      std::filesystem::remove(out_dir / previous.file, ec);
       if (progress)
         print_progress(steps.accepted, step);
     }
+  }
+  if (signal)
+  {
+    summary["status"] = "interrupted";
+    summary["signal"] = signal_name(signal);
+    summary["timing"] = timing(system, seconds_since(t_start), newton_s,
+                               callback_seconds(system) - callbacks_before, newton_its);
+    try
+    {
+      write_summary();
+    }
+    catch (const OutputError& e)
+    {
+      fail_on_output(e);
+    }
+    VecDestroy(&x);
+    throw Interrupted(signal, steps.accepted, steps.t);
   }
   VecDestroy(&x);
   return summary;

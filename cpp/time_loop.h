@@ -3,6 +3,7 @@
 #pragma once
 
 #include "config.h"
+#include "interrupt.h"
 
 #include <filesystem>
 #include <mpi.h>
@@ -15,7 +16,22 @@ struct NewtonFailure : std::runtime_error
   using std::runtime_error::runtime_error;
 };
 
-/// Run the time loop, write DIR/summary.json etc.; return the summary
+/// A signal (SIGINT, SIGTERM) ended the run after `steps` accepted steps;
+/// the summary says "interrupted"
+struct Interrupted : std::runtime_error
+{
+  Interrupted(int signum, int steps, double t)
+      : std::runtime_error("interrupted by " + signal_name(signum) + " after step "
+                           + std::to_string(steps) + " (t = " + json(t).dump()
+                           + "); continue with --resume"),
+        signum(signum)
+  {
+  }
+  int signum;
+};
+
+/// Run the time loop, write DIR/summary.json etc.; return the summary.
+/// With `resume` (a summary.json of DIR), continue from its checkpoint.
 json run(const json& cfg, const std::filesystem::path& out_dir, MPI_Comm comm,
-         bool progress, const std::string& source);
+         bool progress, const std::string& source, const json* resume = nullptr);
 } // namespace piezo

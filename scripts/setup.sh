@@ -17,6 +17,8 @@ PACKAGES=(
   openmpi-bin libopenblas0
   # tests and pictures
   python3-pytest python3-matplotlib
+  # tests read the XDMF steps back
+  python3-h5py
   # benchmarks: /usr/bin/time for peak memory
   time
 )

@@ -2,6 +2,7 @@
 exit codes as the C++ executable `piezo-contact`."""
 
 import argparse
+import json
 import sys
 from pathlib import Path
 
@@ -25,8 +26,11 @@ sys.excepthook = _abort_on_uncaught
 
 def parser(description):
     ap = argparse.ArgumentParser(description=description)
-    ap.add_argument("--config", required=True, help="JSON run configuration")
+    ap.add_argument("--config", help="JSON run configuration")
     ap.add_argument("--output", required=True, help="output directory")
+    ap.add_argument("--resume", action="store_true",
+                    help="continue the interrupted or failed run in --output "
+                         "(its config is in summary.json)")
     ap.add_argument("--set", action="append", default=[], metavar="KEY.PATH=VALUE",
                     help="override a config value (JSON value), e.g. --set mesh.n=64")
     ap.add_argument("--quiet", action="store_true", help="no per-step progress lines")
@@ -55,3 +59,24 @@ def prepare_output(path, source, comm):
     error = comm.bcast(error, root=0)
     if error:
         raise config.ConfigError(error)
+
+
+def resumable_summary(out_dir, solver):
+    """The summary.json of an interrupted or failed run in DIR, to continue it."""
+    path = Path(out_dir) / "summary.json"
+    try:
+        summary = json.loads(path.read_text())
+    except OSError:
+        raise config.ConfigError(f"{path}: cannot resume: no such file") from None
+    except ValueError:
+        raise config.ConfigError(f"{path}: cannot resume: not valid JSON") from None
+    if not isinstance(summary, dict) or summary.get("solver") != solver:
+        found = summary.get("solver") if isinstance(summary, dict) else None
+        raise config.ConfigError(f"{path}: cannot resume: solver = {json.dumps(found)}, "
+                                 f"this is the {solver} solver")
+    if "checkpoint" not in summary or "config" not in summary:
+        raise config.ConfigError(f"{path}: cannot resume: no checkpoint "
+                                 "(an older version wrote it)")
+    if summary.get("status") == "completed":
+        raise config.ConfigError(f'{path}: cannot resume: status = "completed"')
+    return summary

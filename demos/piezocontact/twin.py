@@ -2,8 +2,12 @@
 NewtonSolver on the forms of forms/piezo_forms.py, driven step by step
 exactly as the C++ time loop (cpp/time_loop.cpp) drives the compiled kernels."""
 
+import os
+import signal
 import sys
 import time
+
+from pathlib import Path
 
 import numpy as np
 from dolfinx import fem
@@ -12,13 +16,45 @@ from dolfinx.nls.petsc import NewtonSolver
 from mpi4py import MPI
 from petsc4py import PETSc
 
-from . import diagnostics, meshing, output
+from . import checkpoint, diagnostics, meshing, output
+from .config import ConfigError
 from .fieldwise import FieldwiseConvergence
 from .problem import Problem
 
 
 class NewtonFailure(RuntimeError):
     pass
+
+
+class Interrupted(RuntimeError):
+    """A signal (SIGINT, SIGTERM) ended the run; the summary says "interrupted"."""
+
+    def __init__(self, signum, steps, t):
+        super().__init__(f"interrupted by {signal.Signals(signum).name} after step {steps} "
+                         f"(t = {t!r}); continue with --resume")
+        self.signum = signum
+
+
+_received = 0
+
+
+def _record_signal(signum, frame):
+    global _received
+    _received = signum
+
+
+def install_interrupt_handlers():
+    """SIGINT and SIGTERM only set a flag (no KeyboardInterrupt): the time loop
+    asks at every Newton iteration and between steps whether any rank was
+    signalled, so that all ranks stop at the same point. After petsc4py's
+    import, whose PETSc handler would print a dump and abort."""
+    signal.signal(signal.SIGINT, _record_signal)
+    signal.signal(signal.SIGTERM, _record_signal)
+
+
+def agreed_interrupt(comm):
+    """The signal received on any rank, 0 if none. Collective."""
+    return comm.allreduce(_received, op=MPI.MAX)
 
 
 class _Problem(NonlinearProblem):
@@ -36,6 +72,10 @@ class _Problem(NonlinearProblem):
         self.problem, self.monitor = problem, monitor
         self.ops = {name: {"count": 0, "seconds": 0.0} for name in ("residual", "jacobian")}
         self.reactions = {}
+        self.signal = 0
+        # The iterate and k of the last Jacobian: a resumed run rebuilds the
+        # convergence test's scaling from them
+        self.x_assembled, self.k_assembled = problem.x.x.array.copy(), 0.0
 
     def _timed(self, name, t0):
         self.ops[name]["count"] += 1
@@ -52,7 +92,11 @@ class _Problem(NonlinearProblem):
         self._record_reactions(b)
         fem.petsc.set_bc(b, self.bcs, x, -1.0)
         self._timed("residual", t0)
-        if self.monitor.check(x.array_r, b.array_r):
+        converged = self.monitor.check(x.array_r, b.array_r)
+        # A signal on any rank ends the solve too ("converged"; the loop then
+        # abandons the step), so that every rank stops at the same iteration
+        self.signal = agreed_interrupt(self.problem.comm)
+        if converged or self.signal:
             b.zeroEntries()
 
     def _record_reactions(self, b):
@@ -70,6 +114,8 @@ class _Problem(NonlinearProblem):
         super().J(x, A)
         self._timed("jacobian", t0)
         self.monitor.set_scaling(A)
+        self.x_assembled[:] = self.problem.x.x.array
+        self.k_assembled = float(self.problem.data["k"].value)
 
 
 def _set_petsc_options(ksp, options):
@@ -82,10 +128,17 @@ def _set_petsc_options(ksp, options):
     ksp.setFromOptions()
 
 
-def run(cfg, out_dir, comm, progress=True, source="config"):
-    """Run the time loop; write DIR/summary.json etc.; return the summary."""
+def run(cfg, out_dir, comm, progress=True, source="config", resume=None):
+    """Run the time loop; write DIR/summary.json etc.; return the summary.
+    With `resume` (a summary.json of DIR), continue from its checkpoint."""
     t_start = time.perf_counter()
-    mesh_file = meshing.prepare(cfg, source, out_dir, comm)
+    out_dir = Path(out_dir)
+    if resume is None:
+        mesh_file = meshing.prepare(cfg, source, out_dir, comm)
+    else:
+        mesh_file = resume["mesh_file"]
+    if mesh_file is not None:
+        mesh_file = os.path.abspath(mesh_file)
     problem = Problem(cfg, comm, source, mesh_file)
     probes = diagnostics.Probes(problem, cfg["probes"], source)
     contact = diagnostics.ContactGeometry(problem)
@@ -101,23 +154,91 @@ def run(cfg, out_dir, comm, progress=True, source="config"):
     newton.error_on_nonconvergence = False
     _set_petsc_options(newton.krylov_solver, cfg["solver"]["petsc_options"])
 
-    writer = output.Writer(problem, out_dir, cfg)
-    W_map = problem.W.dofmap.index_map
-    summary = {"solver": "python", "dofs": W_map.size_global * problem.W.dofmap.index_map_bs,
-               "mpi_size": comm.size, "config": cfg, "mesh_file": mesh_file,
-               "boundary_lengths": meshing.boundary_lengths(problem.mesh, problem.facet_tags,
-                                                            problem.tag_of, comm),
-               "steps": [], "timing": {}}
+    if resume is not None:
+        summary = resume
+        state = summary["checkpoint"]
+        # What came after the checkpoint is done again
+        del summary["steps"][state["step"]:]
+        del summary["events"][state["events"]:]
+        summary.pop("error", None)
+        summary.pop("signal", None)
+        summary.setdefault("resumed", []).append(
+            {"step": state["step"], "t": state["t"], "mpi_size": comm.size})
+        summary["mpi_size"] = comm.size
+    else:
+        W_map = problem.W.dofmap.index_map
+        summary = {"solver": "python",
+                   "dofs": W_map.size_global * problem.W.dofmap.index_map_bs,
+                   "mpi_size": comm.size, "config": cfg,
+                   "config_file": os.path.abspath(source), "mesh_file": mesh_file,
+                   "boundary_lengths": meshing.boundary_lengths(
+                       problem.mesh, problem.facet_tags, problem.tag_of, comm),
+                   "steps": [], "events": [], "timing": {}}
+        state = None
+    summary["status"] = "running"
+
+    def write_summary():
+        output.collectively(comm, comm.rank == 0,
+                            lambda: output.write_json_atomic(out_dir / "summary.json", summary))
+
+    def fail_on_output(err):
+        """A write error ends the run; the summary says so if it still can."""
+        summary["status"], summary["error"] = "failed", str(err)
+        try:
+            write_summary()
+        except output.OutputError:
+            pass
+        raise err
 
     T, N = cfg["time"]["T"], cfg["time"]["steps"]
+    steps = StepControl(T, N, cfg["solver"]["newton"]["max_step_halvings"])
     x, x_prev = problem.x, problem.x_prev
     x_prev2 = x_prev.x.array.copy()   # u_{n-2}, for the predictor
     u = problem.u_dofs
-    nl.J(x.vector, newton.A)          # initial scaling D for the first test
+
+    def save_checkpoint():
+        s = checkpoint.step_state(steps, nl.k_assembled, len(summary["events"]),
+                                  f"checkpoint/state_{steps.accepted:06d}.npy")
+        if comm.rank == 0:
+            (out_dir / "checkpoint").mkdir(exist_ok=True)
+        checkpoint.write_states(out_dir / s["file"], problem,
+                                (x_prev.x.array, x_prev2, nl.x_assembled))
+        return s
+
+    try:
+        writer = output.Writer(problem, out_dir, cfg, state["step"] if state else 0)
+        if resume is not None:
+            # The Jacobian in use at the checkpoint, rebuilt where it was
+            # assembled: the same convergence scaling as if never stopped
+            x_J = np.zeros_like(x.x.array)
+            try:
+                checkpoint.read_states(out_dir / state["file"], problem,
+                                       (x_prev.x.array, x_prev2, x_J))
+            except (OSError, ValueError) as err:
+                raise ConfigError(f"cannot resume: {err}") from None
+            x.x.array[:] = x_J
+            problem.data["k"].value = state["k_J"]
+            nl.J(x.vector, newton.A)
+            x.x.array[:] = x_prev.x.array
+            steps.restore(state["nominal_steps"], state["t"], state["k"], state["k_last"],
+                          state["step"])
+            if comm.rank == 0 and progress:
+                print(f"[python] resuming at step {state['step']}, t = {state['t']:.6g}",
+                      flush=True)
+        else:
+            nl.J(x.vector, newton.A)  # initial scaling D for the first test
+            state = save_checkpoint()
+        summary["checkpoint"] = state
+        write_summary()
+    except output.OutputError as err:
+        fail_on_output(err)
+
     newton_s, newton_its, callbacks_in_newton = 0.0, 0, 0.0
-    summary["status"], summary["events"] = "running", []
-    steps = StepControl(T, N, cfg["solver"]["newton"]["max_step_halvings"])
+    signum = 0
     while not steps.done():
+        signum = agreed_interrupt(comm)
+        if signum:
+            break
         t, k = steps.attempt()
         problem.data["k"].value = k
         if problem.manufactured:
@@ -134,6 +255,10 @@ def run(cfg, out_dir, comm, progress=True, source="config"):
         newton_s += time.perf_counter() - t0
         newton_its += its
         callbacks_in_newton += sum(op["seconds"] for op in nl.ops.values()) - c0
+        if nl.signal:
+            signum = nl.signal
+            x.x.array[:] = x_prev.x.array  # the step is abandoned
+            break
         if not converged:
             last = monitor.history[-1]["relative"]
             what = (f"Newton did not converge at t = {t:g} (k = {k:g}) in {its} iterations: "
@@ -146,9 +271,10 @@ def run(cfg, out_dir, comm, progress=True, source="config"):
                 summary["status"] = "failed"
                 summary["error"] = (f"{what}; gave up after {steps.max_halvings} halvings "
                                     "of the time step")
-                if comm.rank == 0:
-                    output.write_json_atomic(f"{out_dir}/summary.json", summary)
-                writer.close()
+                try:
+                    write_summary()
+                except output.OutputError:
+                    pass
                 raise NewtonFailure(summary["error"])
             if comm.rank == 0:
                 print(f"[python] {what}: retrying with k = {steps.k:g}", flush=True)
@@ -162,15 +288,38 @@ def run(cfg, out_dir, comm, progress=True, source="config"):
             step["errors"] = problem.manufactured.errors(comm)
         x_prev2[:] = x_prev.x.array
         x_prev.x.array[:] = x.x.array
-        writer.write_step(steps.accepted, t, final=steps.done())
-        summary["steps"].append(step)
-        summary["status"] = "completed" if steps.done() else "running"
-        summary["timing"] = _timing(nl, time.perf_counter() - t_start, newton_s,
-                                    callbacks_in_newton, newton_its)
+        # Step files, then its checkpoint, then the summary that points to
+        # both: a kill at any instant leaves a summary whose every step is on disk
+        previous = state
+        try:
+            writer.write_step(steps.accepted, t, final=steps.done())
+            state = save_checkpoint()
+            summary["steps"].append(step)
+            summary["checkpoint"] = state
+            summary["status"] = "completed" if steps.done() else "running"
+            summary["timing"] = _timing(nl, time.perf_counter() - t_start, newton_s,
+                                        callbacks_in_newton, newton_its)
+            write_summary()
+        except output.OutputError as err:
+            del summary["steps"][previous["step"]:]
+            summary["checkpoint"] = previous
+            if comm.rank == 0 and state is not previous:
+                # unreferenced: its space may let the summary say what went wrong
+                output.remove_quietly(out_dir / state["file"])
+            fail_on_output(err)
         if comm.rank == 0:
-            output.write_json_atomic(f"{out_dir}/summary.json", summary)
+            output.remove_quietly(out_dir / previous["file"])
             if progress:
                 _progress(steps.accepted, N, step)
+    if signum:
+        summary["status"], summary["signal"] = "interrupted", signal.Signals(signum).name
+        summary["timing"] = _timing(nl, time.perf_counter() - t_start, newton_s,
+                                    callbacks_in_newton, newton_its)
+        try:
+            write_summary()
+        except output.OutputError as err:
+            fail_on_output(err)
+        raise Interrupted(signum, steps.accepted, steps.t)
     writer.close()
     return summary
 
@@ -208,6 +357,11 @@ class StepControl:
         if t == (self.n + 1) * self.k_nominal:
             self.n += 1
             self.k = self.k_nominal
+
+    def restore(self, nominal_steps, t, k, k_last, accepted):
+        """Continue from a checkpoint: the state right after an accepted step."""
+        self.n, self.halvings = nominal_steps, 0
+        self.t, self.k, self.k_last, self.accepted = t, k, k_last, accepted
 
     def reject(self):
         """'halve k' or, past the limit, 'stop'."""
