@@ -46,7 +46,7 @@ piezo::json resumable_summary(const std::filesystem::path& dir)
   if (summary.value("solver", "") != "cpp")
     throw piezo::ConfigError(path.string() + ": cannot resume: solver = "
                              + summary.value("solver", piezo::json(nullptr)).dump()
-                             + ", this is the C++ solver");
+                             + ", this is the \"cpp\" solver");
   if (!summary.contains("checkpoint") or !summary.contains("config"))
     throw piezo::ConfigError(path.string()
                              + ": cannot resume: no checkpoint (an older version wrote it)");

@@ -73,7 +73,7 @@ def resumable_summary(out_dir, solver):
     if not isinstance(summary, dict) or summary.get("solver") != solver:
         found = summary.get("solver") if isinstance(summary, dict) else None
         raise config.ConfigError(f"{path}: cannot resume: solver = {json.dumps(found)}, "
-                                 f"this is the {solver} solver")
+                                 f"this is the \"{solver}\" solver")
     if "checkpoint" not in summary or "config" not in summary:
         raise config.ConfigError(f"{path}: cannot resume: no checkpoint "
                                  "(an older version wrote it)")

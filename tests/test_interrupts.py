@@ -1,0 +1,313 @@
+"""Interrupted runs lose nothing: a kill -9 at any instant leaves every
+output readable up to the last step in summary.json; SIGINT and SIGTERM
+stop cleanly with status "interrupted"; a full disk ends the run with one
+line and exit 4; --resume continues a run exactly as if never stopped."""
+
+import json
+import os
+import random
+import signal
+import subprocess
+import time
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import h5py
+import numpy as np
+import pytest
+from conftest import ENV, ROOT, SQUARE, command, run_solver
+
+VARIANT = ROOT / "demos" / "contactor_in_contact.json"
+# Example 1 at n = 32: a few ms per step, so that kills land in every phase
+KILLED = ["mesh.n=32", "time.steps=2000", "output.nodal=all"]
+FIELDS = {"u", "phi", "D", "stress_voigt"}
+
+
+def start(solver, out, overrides, config=SQUARE, np_=1):
+    args = command(solver, np_) + ["--config", str(config), "--output", str(out), "--quiet"]
+    for o in overrides:
+        args += ["--set", o]
+    return subprocess.Popen(args, env=ENV, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                            text=True)
+
+
+def wait_for_steps(proc, out, steps, timeout=300):
+    """Poll summary.json (replaced atomically) until it lists `steps` steps."""
+    summary = Path(out) / "summary.json"
+    deadline = time.time() + timeout
+    while time.time() < deadline and proc.poll() is None:
+        if summary.exists() and len(json.loads(summary.read_text())["steps"]) >= steps:
+            return
+        time.sleep(0.002)
+    raise AssertionError(f"no step {steps} in {summary} (exit {proc.poll()})")
+
+
+def kill9(proc):
+    proc.send_signal(signal.SIGKILL)
+    proc.wait()
+
+
+def resume(solver, out, np_=1, check=True):
+    args = command(solver, np_) + ["--output", str(out), "--resume", "--quiet"]
+    proc = subprocess.run(args, capture_output=True, text=True, env=ENV, timeout=600)
+    if check and proc.returncode != 0:
+        raise AssertionError(f"{' '.join(args)} failed ({proc.returncode}):\n{proc.stderr}")
+    summary = Path(out) / "summary.json"
+    return (json.loads(summary.read_text()) if summary.exists() else None), proc
+
+
+def indexed_steps(out):
+    """{function: [(t, [(h5 file, dataset, dims)...]) per step]} of solution.xdmf;
+    it must parse."""
+    root = ET.parse(Path(out) / "solution.xdmf").getroot()
+    series = {}
+    for grid in root.find("Domain").findall("Grid"):
+        if grid.get("CollectionType") != "Temporal":
+            continue
+        steps = []
+        for g in grid.findall("Grid"):
+            items = []
+            for item in g.iter("DataItem"):
+                file, dataset = item.text.strip().split(":")
+                items.append((Path(out) / file, dataset,
+                              tuple(int(d) for d in item.get("Dimensions").split())))
+            steps.append((float(g.find("Time").get("Value")), items))
+        series[grid.get("Name")] = steps
+    return series
+
+
+def read_indexed(out, name, step):
+    """Values of function `name` at step (1-based) through the index."""
+    _, items = indexed_steps(out)[name][step - 1]
+    file, dataset, _ = items[0]
+    with h5py.File(file, "r") as f:
+        return f[dataset][()]
+
+
+def check_outputs(out, status="running"):
+    """Everything a kill may have cut short is readable: the summary, its
+    checkpoint, the index and the HDF5 data of every indexed step, the mesh,
+    the nodal files of every step. Returns the number of steps recorded."""
+    out = Path(out)
+    s = json.loads((out / "summary.json").read_text())
+    assert s["status"] == status
+    n = len(s["steps"])
+    assert s["checkpoint"]["step"] == n
+    state = np.load(out / s["checkpoint"]["file"])
+    assert state.shape[1] == 9 and np.isfinite(state).all()
+    series = indexed_steps(out)
+    assert set(series) == FIELDS
+    for name, steps in series.items():
+        # the step after the last recorded one may be indexed already
+        assert len(steps) in (n, n + 1), (name, len(steps), n)
+        assert [t for t, _ in steps[:n]] == [st["t"] for st in s["steps"]]
+        for _, items in steps:
+            for file, dataset, dims in items:
+                with h5py.File(file, "r") as f:
+                    data = f[dataset][()]
+                assert data.shape == dims and np.isfinite(data).all()
+    with h5py.File(out / "solution.h5", "r") as f:
+        assert f["/Mesh/mesh/geometry"].shape[0] > 0
+    if s["config"]["output"]["nodal"] == "all":
+        for i in range(1, n + 1):
+            for name in ("u", "phi"):
+                assert np.isfinite(np.load(out / "nodal" / f"{name}_{i:04d}.npy")).all()
+    return n
+
+
+def kill_at_random_instant(solver, out, seed):
+    """kill -9 a run some random time after it has written its first files."""
+    proc = start(solver, out, KILLED)
+    wait_for_steps(proc, out, 0)
+    time.sleep(random.Random(seed).uniform(0.0, 1.5))
+    kill9(proc)
+    return check_outputs(out)
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_kill_at_any_instant_leaves_readable_outputs(solver, seed, tmp_path):
+    kill_at_random_instant(solver, tmp_path, seed)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("seed", range(100, 150))
+def test_kill_campaign(solver, seed, tmp_path):
+    """The same at 50 more instants per solver."""
+    kill_at_random_instant(solver, tmp_path, seed)
+
+
+def without_timing(summary):
+    return {k: v for k, v in summary.items() if k not in ("timing", "resumed", "mpi_size", "mesh_file")}
+
+
+def assert_same_run(a, b, rel):
+    """Every step record equal (bit for bit when rel = 0), events, status."""
+    if rel == 0:
+        assert without_timing(a) == without_timing(b)
+        return
+
+    def close(x, y):
+        if isinstance(x, dict):
+            assert x.keys() == y.keys()
+            for k in x:
+                close(x[k], y[k])
+        elif isinstance(x, list):
+            assert len(x) == len(y)
+            for p, q in zip(x, y):
+                close(p, q)
+        elif isinstance(x, float):
+            assert y == pytest.approx(x, rel=rel, abs=1e-300)
+        else:
+            assert x == y
+    close(without_timing(a), without_timing(b))
+
+
+# The bar of the issue: C++ bit for bit; the Python twin to 1e-12
+REL = {"cpp": 0.0, "python": 1e-12}
+
+
+def test_resume_after_kill_reproduces_the_run(solver, tmp_path):
+    """Killed at step >= 40 of 150, then killed again while resuming: the
+    resumed run's summary, nodal files and XDMF data equal the uninterrupted
+    run's, every step."""
+    overrides = ["mesh.n=24", "time.steps=150", "output.nodal=all"]
+    full, _ = run_solver(solver, tmp_path / "full", overrides)
+    part = tmp_path / "part"
+    proc = start(solver, part, overrides)
+    wait_for_steps(proc, part, 40)
+    kill9(proc)
+    first = check_outputs(part)
+    args = command(solver) + ["--output", str(part), "--resume", "--quiet"]
+    proc = subprocess.Popen(args, env=ENV, stdout=subprocess.DEVNULL,
+                            stderr=subprocess.DEVNULL)
+    wait_for_steps(proc, part, first + 20)
+    kill9(proc)
+    second = check_outputs(part)
+    resumed, _ = resume(solver, part)
+    assert [r["step"] for r in resumed["resumed"]] == [first, second]
+    assert resumed["status"] == "completed"
+    assert_same_run(full, resumed, REL[solver])
+    for i in range(1, 151):
+        for name in ("u", "phi"):
+            a = np.load(tmp_path / "full" / "nodal" / f"{name}_{i:04d}.npy")
+            b = np.load(part / "nodal" / f"{name}_{i:04d}.npy")
+            np.testing.assert_allclose(b, a, rtol=REL[solver], atol=0)
+    for i in (1, first, first + 1, 150):
+        for name in FIELDS:
+            np.testing.assert_allclose(read_indexed(part, name, i),
+                                       read_indexed(tmp_path / "full", name, i),
+                                       rtol=REL[solver], atol=0)
+    # only the last checkpoint is kept
+    assert [p.name for p in (part / "checkpoint").iterdir()] == ["state_000150.npy"]
+
+
+def test_resume_keeps_step_cuts(solver, tmp_path):
+    """At most 2 Newton iterations: the first nominal step is cut in four
+    (events at the start, k kept small until t = 0.25). A run stopped after
+    its first steps resumes to the uninterrupted one, events included."""
+    overrides = ["mesh.size=0.05", "time.steps=40", "output.nodal=none",
+                 "solver.newton.max_iterations=2", "solver.newton.max_step_halvings=8"]
+    full, _ = run_solver(solver, tmp_path / "full", overrides, config=VARIANT)
+    assert len(full["events"]) >= 3
+    part = tmp_path / "part"
+    proc = start(solver, part, overrides, config=VARIANT)
+    wait_for_steps(proc, part, 1)
+    kill9(proc)
+    check_outputs(part)
+    resumed, _ = resume(solver, part)
+    assert_same_run(full, resumed, REL[solver])
+
+
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])
+def test_signal_stops_cleanly(solver, sig, tmp_path):
+    """SIGINT/SIGTERM: the step under way is abandoned, the summary says
+    "interrupted", one line says so, exit 128 + signal; no traceback."""
+    proc = start(solver, tmp_path, KILLED)
+    wait_for_steps(proc, tmp_path, 5)
+    proc.send_signal(sig)
+    _, err = proc.communicate(timeout=60)
+    assert proc.returncode == 128 + sig
+    n = check_outputs(tmp_path, status="interrupted")
+    s = json.loads((tmp_path / "summary.json").read_text())
+    assert s["signal"] == signal.Signals(sig).name
+    assert err.strip().splitlines() == [
+        f"interrupted by {signal.Signals(sig).name} after step {n} "
+        f"(t = {s['steps'][-1]['t']!r}); continue with --resume"]
+    # an interrupted step is not half-written: the index lists the n steps
+    assert all(len(v) == n for v in indexed_steps(tmp_path).values())
+
+
+def test_sigterm_under_mpirun_stops_every_rank(solver, tmp_path):
+    """mpirun passes SIGTERM (and SIGINT, as SIGTERM) to the ranks: all stop
+    at the same iteration and the summary says so; the run then resumes on
+    one process to the serial answer (a checkpoint is by input vertex)."""
+    overrides = ["mesh.n=24", "time.steps=200", "output.nodal=all"]
+    proc = start(solver, tmp_path / "part", overrides, np_=2)
+    wait_for_steps(proc, tmp_path / "part", 10)
+    proc.send_signal(signal.SIGTERM)
+    proc.communicate(timeout=60)
+    assert proc.returncode != 0
+    check_outputs(tmp_path / "part", status="interrupted")
+    resumed, _ = resume(solver, tmp_path / "part")
+    full, _ = run_solver(solver, tmp_path / "full", overrides)
+    a = np.load(tmp_path / "full" / "nodal" / "u_0200.npy")
+    b = np.load(tmp_path / "part" / "nodal" / "u_0200.npy")
+    # rows in another order under MPI: match them by coordinates
+    a, b = a[np.lexsort(a[:, :2].T)], b[np.lexsort(b[:, :2].T)]
+    np.testing.assert_allclose(b, a, rtol=1e-9, atol=1e-9 * np.abs(a[:, 2:]).max())
+    assert resumed["steps"][-1]["t"] == full["steps"][-1]["t"]
+
+
+def test_resume_refuses_what_it_cannot_continue(solver, tmp_path):
+    """Nothing to resume, a completed run, another solver's run, --config
+    with --resume: one line, exit 2."""
+    _, proc = resume(solver, tmp_path / "none", check=False)
+    assert proc.returncode == 2
+    assert proc.stderr.strip().splitlines()[-1] == \
+        f"error: {tmp_path / 'none' / 'summary.json'}: cannot resume: no such file"
+    run_solver(solver, tmp_path / "done", ["mesh.n=4", "time.steps=2"])
+    _, proc = resume(solver, tmp_path / "done", check=False)
+    assert proc.returncode == 2 and proc.stderr.strip().endswith(
+        'cannot resume: status = "completed"')
+    other = {"cpp": "python", "python": "cpp"}[solver]
+    s = json.loads((tmp_path / "done" / "summary.json").read_text())
+    s["status"], s["solver"] = "running", other
+    (tmp_path / "done" / "summary.json").write_text(json.dumps(s))
+    _, proc = resume(solver, tmp_path / "done", check=False)
+    assert proc.returncode == 2 and proc.stderr.strip().endswith(
+        f'cannot resume: solver = "{other}", this is the "{solver}" solver')
+    args = command(solver) + ["--output", str(tmp_path / "done"), "--resume",
+                              "--config", str(SQUARE)]
+    proc = subprocess.run(args, capture_output=True, text=True, env=ENV)
+    assert proc.returncode == 2 and "no --config, no --set" in proc.stderr
+
+
+@pytest.fixture
+def small_disk(tmp_path):
+    """A 1.5 MB tmpfs: needs root and a kernel that lets us mount."""
+    if os.geteuid() != 0:
+        pytest.skip("mounting a small tmpfs needs root")
+    disk = tmp_path / "disk"
+    disk.mkdir()
+    proc = subprocess.run(["mount", "-t", "tmpfs", "-o", "size=1536k", "tmpfs", str(disk)],
+                          capture_output=True, text=True)
+    if proc.returncode != 0:
+        pytest.skip(f"cannot mount a tmpfs here: {proc.stderr.strip()}")
+    yield disk
+    subprocess.run(["umount", str(disk)], check=True)
+
+
+def test_full_disk_ends_with_one_line(solver, small_disk):
+    """The disk fills up at some step: exit 4, one line naming the file and
+    "No space left on device", no HDF5 dump; the summary says "failed" with
+    the error and every step it records is readable."""
+    out = small_disk / "run"
+    _, proc = run_solver(solver, out, ["mesh.n=32", "time.steps=300"], check=False)
+    assert proc.returncode == 4
+    lines = proc.stderr.strip().splitlines()
+    assert len(lines) == 1, proc.stderr
+    assert lines[0].startswith(f"error: cannot write {out}/")
+    assert lines[0].endswith(": No space left on device")
+    n = check_outputs(out, status="failed")
+    s = json.loads((out / "summary.json").read_text())
+    assert s["error"] == lines[0][len("error: "):] and n > 0
