@@ -112,6 +112,15 @@ def main():
             "stops with exit code 3, the message names the time, the step and both "
             "relative residuals, and summary.json (status \"failed\", with its events) "
             "and the XDMF file keep every step computed before.\n",
+            "A write error (a full disk) stops the run with exit code 4 and one line, "
+            "`error: cannot write FILE: No space left on device`; summary.json says "
+            "\"failed\" with that error when there is room for it, and every earlier step "
+            "stays readable. SIGINT and SIGTERM stop it with exit code 130 and 143, status "
+            "\"interrupted\". `--resume` refuses, with exit code 2, a directory without "
+            "summary.json (`DIR/summary.json: cannot resume: no such file`), a completed run "
+            "(`cannot resume: status = \"completed\"`), the other solver's run (`cannot "
+            "resume: solver = \"python\", this is the \"cpp\" solver`) and `--config` or "
+            "`--set` beside it. Checked by `tests/test_interrupts.py`.\n",
             "| bad input | message (C++ solver, config `demos/...` or a scratch file) |",
             "|---|---|"]
     exe = ROOT / "build" / "piezo-contact"
