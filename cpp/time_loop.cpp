@@ -143,11 +143,32 @@ double callback_seconds(const NonlinearSystem& sys)
 /// Where the time went. Triangular solves: the Newton time not spent in the
 /// callbacks (one KSPSolve per iteration, plus vector updates); the first
 /// Jacobian and factorisation, made before the loop, count in theirs.
-json timing(const NonlinearSystem& sys, double total_s, double newton_s,
-            double callbacks_in_newton, int newton_its)
+/// Time spent writing outputs, per kind: what the safe writes cost
+struct OutputStats
+{
+  OperationStats step_files, checkpoint, summary;
+};
+
+/// Run `action`, adding its wall time to `s`
+template <typename F>
+void timed(OperationStats& s, F&& action)
+{
+  const auto t0 = Clock::now();
+  action();
+  s.seconds += seconds_since(t0);
+  ++s.count;
+}
+
+json timing(const NonlinearSystem& sys, const OutputStats& out, double total_s,
+            double newton_s, double callbacks_in_newton, int newton_its)
 {
   const double solves = std::max(0.0, newton_s - callbacks_in_newton);
   return {{"total_s", total_s},
+          {"output_s", out.step_files.seconds + out.checkpoint.seconds + out.summary.seconds},
+          {"output",
+           {{"step_files", stats(out.step_files)},
+            {"checkpoint", stats(out.checkpoint)},
+            {"summary", stats(out.summary)}}},
           {"assembly_s", sys.residual.seconds + sys.jacobian.seconds + sys.contact_jacobian.seconds},
           {"solve_s", sys.factorisation.seconds + solves},
           {"operations",
@@ -276,8 +297,16 @@ json run(const json& cfg, const std::filesystem::path& out_dir, MPI_Comm comm,
                {"timing", json::object()}};
   }
   summary["status"] = "running";
+  OutputStats output_stats;
   const auto write_summary = [&]
-  { collectively(comm, rank == 0, [&] { write_json_atomic(out_dir / "summary.json", summary); }); };
+  {
+    timed(output_stats.summary,
+          [&]
+          {
+            collectively(comm, rank == 0,
+                         [&] { write_json_atomic(out_dir / "summary.json", summary); });
+          });
+  };
   // A write error ends the run; the summary says so if it can still be written
   const auto fail_on_output = [&](const OutputError& e)
   {
@@ -307,8 +336,12 @@ json run(const json& cfg, const std::filesystem::path& out_dir, MPI_Comm comm,
                 "checkpoint/" + numbered("state_%06d.npy", steps.accepted)};
     if (rank == 0)
       std::filesystem::create_directories(out_dir / "checkpoint");
-    write_states(out_dir / s.file, problem,
-                 {std::span<const double>(xp), x_prev2, system.x_assembled});
+    timed(output_stats.checkpoint,
+          [&]
+          {
+            write_states(out_dir / s.file, problem,
+                         {std::span<const double>(xp), x_prev2, system.x_assembled});
+          });
     return s;
   };
   std::optional<Writer> writer;
@@ -428,12 +461,13 @@ json run(const json& cfg, const std::filesystem::path& out_dir, MPI_Comm comm,
     const StepState previous = state;
     try
     {
-      writer->write_step(steps.accepted, t, steps.done());
+      timed(output_stats.step_files,
+            [&] { writer->write_step(steps.accepted, t, steps.done()); });
       state = checkpoint();
       summary["steps"].push_back(step);
       summary["checkpoint"] = state.to_json();
       summary["status"] = steps.done() ? "completed" : "running";
-      summary["timing"] = timing(system, seconds_since(t_start), newton_s,
+      summary["timing"] = timing(system, output_stats, seconds_since(t_start), newton_s,
                                  callback_seconds(system) - callbacks_before, newton_its);
       write_summary();
     }
@@ -462,7 +496,7 @@ json run(const json& cfg, const std::filesystem::path& out_dir, MPI_Comm comm,
   {
     summary["status"] = "interrupted";
     summary["signal"] = signal_name(signal);
-    summary["timing"] = timing(system, seconds_since(t_start), newton_s,
+    summary["timing"] = timing(system, output_stats, seconds_since(t_start), newton_s,
                                callback_seconds(system) - callbacks_before, newton_its);
     try
     {

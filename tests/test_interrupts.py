@@ -116,9 +116,11 @@ def check_outputs(out, status="running"):
 
 
 def kill_at_random_instant(solver, out, seed):
-    """kill -9 a run some random time after it has written its first files."""
+    """kill -9 a run some random time after it has written its first files.
+    PIEZO_KILL_SEED shifts the seeds, for campaigns at other instants."""
     proc = start(solver, out, KILLED)
     wait_for_steps(proc, out, 0)
+    seed += int(os.environ.get("PIEZO_KILL_SEED", "0"))
     time.sleep(random.Random(seed).uniform(0.0, 1.5))
     kill9(proc)
     return check_outputs(out)

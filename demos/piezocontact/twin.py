@@ -177,9 +177,21 @@ def run(cfg, out_dir, comm, progress=True, source="config", resume=None):
         state = None
     summary["status"] = "running"
 
+    # time spent writing outputs, per kind: what the safe writes cost
+    output_stats = {k: {"count": 0, "seconds": 0.0}
+                    for k in ("step_files", "checkpoint", "summary")}
+
+    def timed(kind, action):
+        t0 = time.perf_counter()
+        result = action()
+        output_stats[kind]["seconds"] += time.perf_counter() - t0
+        output_stats[kind]["count"] += 1
+        return result
+
     def write_summary():
-        output.collectively(comm, comm.rank == 0,
-                            lambda: output.write_json_atomic(out_dir / "summary.json", summary))
+        timed("summary", lambda: output.collectively(
+            comm, comm.rank == 0,
+            lambda: output.write_json_atomic(out_dir / "summary.json", summary)))
 
     def fail_on_output(err):
         """A write error ends the run; the summary says so if it still can."""
@@ -201,8 +213,8 @@ def run(cfg, out_dir, comm, progress=True, source="config", resume=None):
                                   f"checkpoint/state_{steps.accepted:06d}.npy")
         if comm.rank == 0:
             (out_dir / "checkpoint").mkdir(exist_ok=True)
-        checkpoint.write_states(out_dir / s["file"], problem,
-                                (x_prev.x.array, x_prev2, nl.x_assembled))
+        timed("checkpoint", lambda: checkpoint.write_states(
+            out_dir / s["file"], problem, (x_prev.x.array, x_prev2, nl.x_assembled)))
         return s
 
     try:
@@ -292,12 +304,13 @@ def run(cfg, out_dir, comm, progress=True, source="config", resume=None):
         # both: a kill at any instant leaves a summary whose every step is on disk
         previous = state
         try:
-            writer.write_step(steps.accepted, t, final=steps.done())
+            timed("step_files", lambda: writer.write_step(steps.accepted, t,
+                                                          final=steps.done()))
             state = save_checkpoint()
             summary["steps"].append(step)
             summary["checkpoint"] = state
             summary["status"] = "completed" if steps.done() else "running"
-            summary["timing"] = _timing(nl, time.perf_counter() - t_start, newton_s,
+            summary["timing"] = _timing(nl, output_stats, time.perf_counter() - t_start, newton_s,
                                         callbacks_in_newton, newton_its)
             write_summary()
         except output.OutputError as err:
@@ -313,7 +326,7 @@ def run(cfg, out_dir, comm, progress=True, source="config", resume=None):
                 _progress(steps.accepted, N, step)
     if signum:
         summary["status"], summary["signal"] = "interrupted", signal.Signals(signum).name
-        summary["timing"] = _timing(nl, time.perf_counter() - t_start, newton_s,
+        summary["timing"] = _timing(nl, output_stats, time.perf_counter() - t_start, newton_s,
                                     callbacks_in_newton, newton_its)
         try:
             write_summary()
@@ -372,13 +385,15 @@ class StepControl:
         return "halve k"
 
 
-def _timing(nl, total_s, newton_s, callbacks_in_newton, newton_its):
+def _timing(nl, output_stats, total_s, newton_s, callbacks_in_newton, newton_its):
     """As the C++ solver reports it. Stock Newton: every Jacobian is
     factorised inside KSPSolve, so factorisation and triangular solves are
     one figure here (the Newton time not spent assembling)."""
     solves = max(0.0, newton_s - callbacks_in_newton)
     ops = nl.ops
     return {"total_s": total_s,
+            "output_s": sum(v["seconds"] for v in output_stats.values()),
+            "output": output_stats,
             "assembly_s": ops["residual"]["seconds"] + ops["jacobian"]["seconds"],
             "solve_s": solves,
             "operations": {"residual": ops["residual"], "jacobian": ops["jacobian"],
