@@ -30,24 +30,6 @@ std::vector<std::int64_t> input_vertex_of_dofs(const fem::FunctionSpace& V)
   }
   return vertex;
 }
-
-/// Rows of the table: input indices need not be 0..N-1 (a file may hold
-/// nodes no cell uses), so the largest one sets the size. Collective.
-std::size_t table_rows(const fem::FunctionSpace& V, MPI_Comm comm)
-{
-  const auto vertex = input_vertex_of_dofs(V);
-  std::int64_t last = vertex.empty() ? -1 : *std::max_element(vertex.begin(), vertex.end());
-  MPI_Allreduce(MPI_IN_PLACE, &last, 1, MPI_INT64_T, MPI_MAX, comm);
-  return last + 1;
-}
-
-/// (space, its W-dofs, first column of the field)
-struct Field
-{
-  const fem::FunctionSpace& V;
-  const std::vector<std::int32_t>& dofs;
-  int column;
-};
 } // namespace
 
 json StepState::to_json() const
@@ -70,71 +52,95 @@ StepState StepState::from_json(const json& j)
   return s;
 }
 
-void write_states(const std::filesystem::path& path, const Problem& problem,
-                  std::array<std::span<const double>, 3> states)
+StateFile::StateFile(const Problem& problem) : _comm(problem.comm)
 {
-  // Rows [vertex, column, values of the 3 states] of owned dofs
-  std::vector<double> rows;
-  for (const Field& f : {Field{*problem.V_u, problem.u_dofs, 0},
-                         Field{*problem.V_phi, problem.phi_dofs, 2}})
+  // Owned dofs first, then ghosts, of u (columns 0, 1) and phi (column 2)
+  std::vector<std::int32_t> ghost_dofs;
+  std::vector<std::int64_t> ghost_slots;
+  std::int64_t last = -1;
+  for (const auto& [V, dofs, column] :
+       {std::tuple{problem.V_u, &problem.u_dofs, 0}, std::tuple{problem.V_phi, &problem.phi_dofs, 2}})
   {
-    const auto vertex = input_vertex_of_dofs(f.V);
-    const int bs = f.V.dofmap()->index_map_bs();
-    const std::int32_t owned = f.V.dofmap()->index_map->size_local();
-    for (std::int32_t i = 0; i < owned; ++i)
+    const auto vertex = input_vertex_of_dofs(*V);
+    const int bs = V->dofmap()->index_map_bs();
+    const std::size_t owned = V->dofmap()->index_map->size_local();
+    for (std::size_t i = 0; i < vertex.size(); ++i)
+    {
+      last = std::max(last, vertex[i]);
       for (int c = 0; c < bs; ++c)
       {
-        rows.insert(rows.end(), {double(vertex[i]), double(f.column + c)});
-        for (const auto& x : states)
-          rows.push_back(x[f.dofs[bs * i + c]]);
+        auto& d = i < owned ? _dofs : ghost_dofs;
+        auto& s = i < owned ? _slots : ghost_slots;
+        d.push_back((*dofs)[bs * i + c]);
+        s.push_back(vertex[i] * columns + column + c);
       }
+    }
   }
+  _num_owned = _dofs.size();
+  _dofs.insert(_dofs.end(), ghost_dofs.begin(), ghost_dofs.end());
+  _slots.insert(_slots.end(), ghost_slots.begin(), ghost_slots.end());
+  // Input indices need not be 0..N-1 (a file may hold nodes no cell uses)
+  MPI_Allreduce(MPI_IN_PLACE, &last, 1, MPI_INT64_T, MPI_MAX, _comm);
+  _rows = last + 1;
+
   int size, rank;
-  MPI_Comm_size(problem.comm, &size);
-  MPI_Comm_rank(problem.comm, &rank);
-  const int count = rows.size();
-  std::vector<int> counts(size), offsets(size + 1, 0);
-  MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, problem.comm);
-  for (int r = 0; r < size; ++r)
-    offsets[r + 1] = offsets[r] + counts[r];
-  std::vector<double> all(rank == 0 ? offsets[size] : 0);
-  MPI_Gatherv(rows.data(), count, MPI_DOUBLE, all.data(), counts.data(), offsets.data(),
-              MPI_DOUBLE, 0, problem.comm);
-  const std::size_t num_vertices = table_rows(*problem.V_phi, problem.comm);
-  collectively(problem.comm, rank == 0,
+  MPI_Comm_size(_comm, &size);
+  MPI_Comm_rank(_comm, &rank);
+  const int count = _num_owned;
+  _counts.resize(rank == 0 ? size : 0);
+  MPI_Gather(&count, 1, MPI_INT, _counts.data(), 1, MPI_INT, 0, _comm);
+  _offsets.assign(_counts.size() + 1, 0);
+  for (std::size_t r = 0; r < _counts.size(); ++r)
+    _offsets[r + 1] = _offsets[r] + _counts[r];
+  _all_slots.resize(_offsets.back());
+  MPI_Gatherv(_slots.data(), count, MPI_INT64_T, _all_slots.data(), _counts.data(),
+              _offsets.data(), MPI_INT64_T, 0, _comm);
+}
+
+void StateFile::write(const std::filesystem::path& path,
+                      std::array<std::span<const double>, 3> states) const
+{
+  // Each state's owned values in turn: [x_n..., x_{n-1}..., x_J...]
+  std::vector<double> values(3 * _num_owned);
+  for (int s = 0; s < 3; ++s)
+    for (std::size_t i = 0; i < _num_owned; ++i)
+      values[s * _num_owned + i] = states[s][_dofs[i]];
+  int rank;
+  MPI_Comm_rank(_comm, &rank);
+  std::vector<int> counts(_counts), offsets(_offsets);
+  for (auto& c : counts)
+    c *= 3;
+  for (auto& o : offsets)
+    o *= 3;
+  std::vector<double> all(rank == 0 ? offsets.back() : 0);
+  MPI_Gatherv(values.data(), values.size(), MPI_DOUBLE, all.data(), counts.data(),
+              offsets.data(), MPI_DOUBLE, 0, _comm);
+  collectively(_comm, rank == 0,
                [&]
                {
-                 std::vector<double> table(num_vertices * columns);
-                 for (std::size_t r = 0; r < all.size(); r += 5)
+                 std::vector<double> table(_rows * columns);
+                 for (std::size_t r = 0; r < counts.size(); ++r)
                  {
-                   const auto v = std::size_t(all[r]);
-                   const int c = int(all[r + 1]);
+                   const std::size_t n = _counts[r];
+                   const double* v = all.data() + offsets[r];
+                   const std::int64_t* slot = _all_slots.data() + _offsets[r];
                    for (int s = 0; s < 3; ++s)
-                     table[v * columns + 3 * s + c] = all[r + 2 + s];
+                     for (std::size_t i = 0; i < n; ++i)
+                       table[slot[i] + 3 * s] = v[s * n + i];
                  }
-                 write_npy(path, table, num_vertices, columns);
+                 write_npy(path, table, _rows, columns);
                });
 }
 
-void read_states(const std::filesystem::path& path, const Problem& problem,
-                 const States& states)
+void StateFile::read(const std::filesystem::path& path, const States& states) const
 {
   const auto [table, rows, cols] = read_npy(path);
-  const std::size_t num_vertices = table_rows(*problem.V_phi, problem.comm);
-  if (rows != num_vertices or cols != columns)
+  if (rows != _rows or cols != columns)
     throw std::runtime_error(path.string() + ": holds " + std::to_string(rows) + " x "
                              + std::to_string(cols) + " values, the mesh needs "
-                             + std::to_string(num_vertices) + " x "
-                             + std::to_string(columns));
-  for (const Field& f : {Field{*problem.V_u, problem.u_dofs, 0},
-                         Field{*problem.V_phi, problem.phi_dofs, 2}})
-  {
-    const auto vertex = input_vertex_of_dofs(f.V);
-    const int bs = f.V.dofmap()->index_map_bs();
-    for (std::size_t i = 0; i < vertex.size(); ++i)
-      for (int c = 0; c < bs; ++c)
-        for (int s = 0; s < 3; ++s)
-          states[s][f.dofs[bs * i + c]] = table[vertex[i] * columns + 3 * s + f.column + c];
-  }
+                             + std::to_string(_rows) + " x " + std::to_string(columns));
+  for (std::size_t i = 0; i < _dofs.size(); ++i)
+    for (int s = 0; s < 3; ++s)
+      states[s][_dofs[i]] = table[_slots[i] + 3 * s];
 }
 } // namespace piezo

@@ -32,11 +32,28 @@ struct StepState
 /// x_n, x_{n-1}, x_J: arrays of problem.W's local dofs (owned and ghost)
 using States = std::array<std::span<double>, 3>;
 
-/// Gather the states by input vertex and write them (rank 0). Collective.
-void write_states(const std::filesystem::path& path, const Problem& problem,
-                  std::array<std::span<const double>, 3> states);
+/// The states' file: which table entry each dof goes to is worked out once
+class StateFile
+{
+public:
+  explicit StateFile(const Problem& problem); // collective
 
-/// Read what write_states wrote into owned and ghost dofs. Collective.
-void read_states(const std::filesystem::path& path, const Problem& problem,
-                 const States& states);
+  /// Gather the states by input vertex and write them (rank 0). Collective.
+  void write(const std::filesystem::path& path,
+             std::array<std::span<const double>, 3> states) const;
+
+  /// Read what write() wrote into owned and ghost dofs. Collective.
+  void read(const std::filesystem::path& path, const States& states) const;
+
+private:
+  MPI_Comm _comm;
+  std::size_t _rows; ///< largest input vertex index + 1
+  /// W-dofs and their table slot (row * 9 + column of x_n): all local ones
+  /// (to read), and the owned ones first (to write)
+  std::vector<std::int32_t> _dofs;
+  std::vector<std::int64_t> _slots;
+  std::size_t _num_owned;
+  std::vector<int> _counts, _offsets;   ///< rank 0: values per rank
+  std::vector<std::int64_t> _all_slots; ///< rank 0: every rank's owned slots
+};
 } // namespace piezo

@@ -329,6 +329,7 @@ json run(const json& cfg, const std::filesystem::path& out_dir, MPI_Comm comm,
   auto xa = problem.x->x()->mutable_array();
   auto xp = problem.x_prev->x()->mutable_array();
   std::vector<double> x_prev2(xp.begin(), xp.end()); // u_{n-2}, for the predictor
+  const StateFile state_file(problem);
   const auto checkpoint = [&]
   {
     StepState s{steps.accepted, steps.nominal_steps(), steps.t, steps.k, steps.k_last,
@@ -339,8 +340,8 @@ json run(const json& cfg, const std::filesystem::path& out_dir, MPI_Comm comm,
     timed(output_stats.checkpoint,
           [&]
           {
-            write_states(out_dir / s.file, problem,
-                         {std::span<const double>(xp), x_prev2, system.x_assembled});
+            state_file.write(out_dir / s.file,
+                             {std::span<const double>(xp), x_prev2, system.x_assembled});
           });
     return s;
   };
@@ -355,7 +356,7 @@ json run(const json& cfg, const std::filesystem::path& out_dir, MPI_Comm comm,
       std::vector<double> xJ(xa.size());
       try
       {
-        read_states(out_dir / state.file, problem, {xp, x_prev2, xJ});
+        state_file.read(out_dir / state.file, {xp, x_prev2, xJ});
       }
       catch (const std::runtime_error& e)
       {

@@ -17,8 +17,8 @@ def _input_vertex_of_dofs(V):
     """Input (file) index of the vertex of each local dof (owned and ghost)
     of a P1 space: P1 dofs and P1 geometry nodes share the cell-local order."""
     mesh = V.mesh
-    num_cells = (mesh.topology.index_map(mesh.topology.dim).size_local
-                 + mesh.topology.index_map(mesh.topology.dim).num_ghosts)
+    cells = mesh.topology.index_map(mesh.topology.dim)
+    num_cells = cells.size_local + cells.num_ghosts
     nodes = mesh.geometry.dofmap.array.reshape(-1, mesh.topology.dim + 1)[:num_cells]
     dofs = V.dofmap.list.array.reshape(-1, mesh.topology.dim + 1)[:num_cells]
     imap = V.dofmap.index_map
@@ -27,55 +27,53 @@ def _input_vertex_of_dofs(V):
     return vertex
 
 
-def _fields(problem):
-    """(space, its W-dofs, first column of the field)"""
-    return ((problem.V_u, problem.u_dofs, 0), (problem.V_phi, problem.phi_dofs, 2))
+class StateFile:
+    """Which table entry each dof goes to is worked out once."""
 
+    def __init__(self, problem):
+        self.comm = problem.comm
+        owned_dofs, owned_slots, dofs, slots = [], [], [], []
+        last = -1
+        for V, w, column in ((problem.V_u, problem.u_dofs, 0),
+                             (problem.V_phi, problem.phi_dofs, 2)):
+            vertex = _input_vertex_of_dofs(V)
+            last = max(last, int(vertex.max()) if vertex.size else -1)
+            bs, owned = V.dofmap.index_map_bs, V.dofmap.index_map.size_local
+            for c in range(bs):
+                dofs.append(w[c::bs])
+                slots.append(vertex * COLUMNS + column + c)
+                owned_dofs.append(w[c:owned * bs:bs])
+                owned_slots.append(vertex[:owned] * COLUMNS + column + c)
+        # Input indices need not be 0..N-1 (a file may hold nodes no cell uses)
+        self.rows = self.comm.allreduce(last, op=MPI.MAX) + 1
+        self.dofs, self.slots = np.concatenate(dofs), np.concatenate(slots)
+        self.owned_dofs = np.concatenate(owned_dofs)
+        all_slots = self.comm.gather(np.concatenate(owned_slots), root=0)
+        self.all_slots = np.concatenate(all_slots) if self.comm.rank == 0 else None
 
-def _table_rows(problem):
-    """Input indices need not be 0..N-1 (a file may hold nodes no cell uses)."""
-    vertex = _input_vertex_of_dofs(problem.V_phi)
-    last = int(vertex.max()) if vertex.size else -1
-    return problem.comm.allreduce(last, op=MPI.MAX) + 1
+    def write(self, path, states):
+        """Gather x_n, x_{n-1}, x_J (arrays of W's local dofs) by input vertex
+        and write them on rank 0. Collective."""
+        values = np.column_stack([x[self.owned_dofs] for x in states])
+        gathered = self.comm.gather(values, root=0)
 
+        def write():
+            table = np.zeros(self.rows * COLUMNS)
+            v = np.vstack(gathered)
+            for s in range(3):
+                table[self.all_slots + 3 * s] = v[:, s]
+            output.save_npy(path, table.reshape(self.rows, COLUMNS))
+        output.collectively(self.comm, self.comm.rank == 0, write)
 
-def write_states(path, problem, states):
-    """Gather x_n, x_{n-1}, x_J (arrays of W's local dofs) by input vertex and
-    write them on rank 0. Collective."""
-    parts = []
-    for V, dofs, column in _fields(problem):
-        vertex = _input_vertex_of_dofs(V)
-        bs, owned = V.dofmap.index_map_bs, V.dofmap.index_map.size_local
-        for c in range(bs):
-            w = dofs[c:owned * bs:bs]
-            parts.append((vertex[:owned], column + c, [x[w] for x in states]))
-    gathered = problem.comm.gather(parts, root=0)
-    rows = _table_rows(problem)
-
-    def write():
-        table = np.zeros((rows, COLUMNS))
-        for rank_parts in gathered:
-            for vertex, column, values in rank_parts:
-                for s, v in enumerate(values):
-                    table[vertex, 3 * s + column] = v
-        output.save_npy(path, table)
-    output.collectively(problem.comm, problem.comm.rank == 0, write)
-
-
-def read_states(path, problem, states):
-    """Read what write_states wrote into the owned and ghost dofs of `states`."""
-    rows = _table_rows(problem)
-    table = np.load(path)
-    if table.shape != (rows, COLUMNS):
-        raise ValueError(f"{path}: holds {table.shape[0]} x {table.shape[1]} values, "
-                         f"the mesh needs {rows} x {COLUMNS}")
-    for V, dofs, column in _fields(problem):
-        vertex = _input_vertex_of_dofs(V)
-        bs = V.dofmap.index_map_bs
-        for c in range(bs):
-            w = dofs[c::bs]
-            for s, x in enumerate(states):
-                x[w] = table[vertex, 3 * s + column + c]
+    def read(self, path, states):
+        """Read what write() wrote into the owned and ghost dofs of `states`."""
+        table = np.load(path)
+        if table.shape != (self.rows, COLUMNS):
+            raise ValueError(f"{path}: holds {table.shape[0]} x {table.shape[1]} values, "
+                             f"the mesh needs {self.rows} x {COLUMNS}")
+        table = table.ravel()
+        for s, x in enumerate(states):
+            x[self.dofs] = table[self.slots + 3 * s]
 
 
 def step_state(steps, k_J, events, file):

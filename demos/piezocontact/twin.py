@@ -208,13 +208,15 @@ def run(cfg, out_dir, comm, progress=True, source="config", resume=None):
     x_prev2 = x_prev.x.array.copy()   # u_{n-2}, for the predictor
     u = problem.u_dofs
 
+    state_file = checkpoint.StateFile(problem)
+
     def save_checkpoint():
         s = checkpoint.step_state(steps, nl.k_assembled, len(summary["events"]),
                                   f"checkpoint/state_{steps.accepted:06d}.npy")
         if comm.rank == 0:
             (out_dir / "checkpoint").mkdir(exist_ok=True)
-        timed("checkpoint", lambda: checkpoint.write_states(
-            out_dir / s["file"], problem, (x_prev.x.array, x_prev2, nl.x_assembled)))
+        timed("checkpoint", lambda: state_file.write(
+            out_dir / s["file"], (x_prev.x.array, x_prev2, nl.x_assembled)))
         return s
 
     try:
@@ -224,8 +226,7 @@ def run(cfg, out_dir, comm, progress=True, source="config", resume=None):
             # assembled: the same convergence scaling as if never stopped
             x_J = np.zeros_like(x.x.array)
             try:
-                checkpoint.read_states(out_dir / state["file"], problem,
-                                       (x_prev.x.array, x_prev2, x_J))
+                state_file.read(out_dir / state["file"], (x_prev.x.array, x_prev2, x_J))
             except (OSError, ValueError) as err:
                 raise ConfigError(f"cannot resume: {err}") from None
             x.x.array[:] = x_J
