@@ -8,6 +8,7 @@ checkpoint, summary). With --baseline BUILD, the same runs of another build
     /usr/bin/python3 benchmarks/output_cost.py                       # prints markdown
     /usr/bin/python3 benchmarks/output_cost.py --sizes 128 256 --baseline /tmp/old/build
     /usr/bin/python3 benchmarks/output_cost.py --solver python --sizes 64 128
+    ... --write docs/benchmarks.md   # (re)places its section there
 
 Each configuration is run --repeat times and the fastest run is kept (the
 disk cache makes the first write of a file slower than the others).
@@ -16,6 +17,7 @@ disk cache makes the first write of a file slower than the others).
 import argparse
 import json
 import os
+import platform
 import subprocess
 import tempfile
 import time
@@ -23,6 +25,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 SQUARE = ROOT / "demos" / "square.json"
+HEADING = "## Output cost per step"
 
 
 def command(solver, build):
@@ -58,15 +61,29 @@ def main():
     ap.add_argument("--solver", choices=["cpp", "python"], default="cpp")
     ap.add_argument("--build", default=str(ROOT / "build"))
     ap.add_argument("--baseline", help="another build directory to compare with (C++)")
+    ap.add_argument("--baseline-name", default="another build",
+                    help="what the baseline is, for the report")
     ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--write", help="(re)place the report's section in this markdown file")
     args = ap.parse_args()
 
     builds = [("this", args.build)] + ([("baseline", args.baseline)] if args.baseline else [])
-    print(f"{args.solver}: example 1, steps = n, nodal files off; fastest of {args.repeat}; "
-          "ms per step\n")
-    print("| n | build | wall, XDMF off (s) | wall, XDMF on (s) | XDMF on - off | "
-          "in run: step files | checkpoint | summary |")
-    print("|---|---|---|---|---|---|---|---|")
+    t0 = time.perf_counter()
+    lines = [f"{HEADING} ({args.solver})\n",
+             f"Regenerate: `/usr/bin/python3 benchmarks/output_cost.py "
+             f"--sizes {' '.join(map(str, args.sizes))}"
+             + (" --baseline BUILD" if args.baseline else "")
+             + f" --write docs/benchmarks.md` (this run: {platform.node()}, "
+             f"{os.cpu_count()} cores, {time.strftime('%Y-%m-%d')}).\n",
+             "Example 1, steps = n, T = 1, nodal files off; fastest of "
+             f"{args.repeat} runs; times per step in ms. *XDMF on - off*: wall time with "
+             "the XDMF output minus without, per step; *in run*: the run's own "
+             "`timing.output` (step files: XDMF and nodal; checkpoint; summary.json)."
+             + (" *baseline*: " + args.baseline_name if args.baseline else "") + "\n",
+             "| n | build | wall, XDMF off (s) | wall, XDMF on (s) | XDMF on - off | "
+             "in run: step files | checkpoint | summary |",
+             "|---|---|---|---|---|---|---|---|"]
+    print("\n".join(lines), flush=True)
     for n in args.sizes:
         for name, build in builds:
             cmd = command(args.solver, build)
@@ -76,9 +93,22 @@ def main():
             inside = ([ms_per_step(split[k]["seconds"], n)
                        for k in ("step_files", "checkpoint", "summary")]
                       if split else ["-", "-", "-"])
-            print(f"| {n} | {name} | {off:.2f} | {on:.2f} | {ms_per_step(on - off, n)} | "
-                  + " | ".join(inside) + " |", flush=True)
-
+            lines.append(f"| {n} | {name} | {off:.2f} | {on:.2f} | "
+                         f"{ms_per_step(on - off, n)} | " + " | ".join(inside) + " |")
+            print(lines[-1], flush=True)
+    lines.append(f"\n(benchmark wall time {time.perf_counter() - t0:.0f} s)")
+    if args.write:
+        # replace this section (to the next ## heading), or append it
+        path = Path(args.write)
+        text = path.read_text() if path.exists() else ""
+        section = "\n".join(lines) + "\n"
+        start = text.find(f"{HEADING} ({args.solver})")
+        if start < 0:
+            text = text.rstrip("\n") + "\n\n" + section
+        else:
+            end = text.find("\n## ", start + 1)
+            text = text[:start] + section + (text[end + 1:] if end >= 0 else "")
+        path.write_text(text)
 
 if __name__ == "__main__":
     main()

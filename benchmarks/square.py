@@ -10,7 +10,8 @@ an iterative solver against LU, per linear solve.
     /usr/bin/python3 benchmarks/square.py --write docs/benchmarks.md
     /usr/bin/python3 benchmarks/square.py --sizes 32 64 --no-mpi --no-study
 
-Output files (XDMF, nodal) are off: this measures the solver, not the disk.
+Output files (XDMF, nodal) are off: this measures the solver, not the disk
+(the per-step checkpoint stays on; benchmarks/output_cost.py measures it).
 Timings come from each run's summary.json; wall and peak memory per process
 from /usr/bin/time.
 """
@@ -177,7 +178,10 @@ def main():
     report = "\n".join(lines) + "\n"
     print(report)
     if args.write:
-        Path(args.write).write_text(report)
+        # sections other scripts write (## headings) are kept
+        old = Path(args.write).read_text() if Path(args.write).exists() else ""
+        kept = old[old.index("\n## "):] if "\n## " in old else ""
+        Path(args.write).write_text(report + kept)
 
 
 if __name__ == "__main__":

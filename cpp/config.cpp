@@ -424,10 +424,16 @@ json load_config(const std::string& path,
     fail(path, "invalid JSON at line " + std::to_string(line) + " column "
                    + std::to_string(col) + ": " + what);
   }
+  return configure(cfg, overrides, path);
+}
+
+json configure(json cfg, const std::vector<std::string>& overrides,
+               const std::string& source)
+{
   for (const auto& o : overrides)
-    apply_override(cfg, o, path);
-  cfg = check(cfg, json::parse(config_schema), "", path);
-  check_semantics(cfg, path);
+    apply_override(cfg, o, source);
+  cfg = check(cfg, json::parse(config_schema), "", source);
+  check_semantics(cfg, source);
   return cfg;
 }
 } // namespace piezo

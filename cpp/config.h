@@ -26,6 +26,10 @@ constexpr int exit_run_error = 3;
 json load_config(const std::string& path,
                  const std::vector<std::string>& overrides);
 
+/// Apply overrides to a config and validate it; errors name `source`
+json configure(json cfg, const std::vector<std::string>& overrides,
+               const std::string& source);
+
 /// Nearest key to a misspelt one (empty if none is close); exposed for tests.
 std::string closest_key(const std::string& key,
                         const std::vector<std::string>& candidates);

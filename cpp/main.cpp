@@ -3,7 +3,7 @@
 // Fernandez & Ouafik 2008), on the ffcx-compiled forms of forms/.
 //
 //   piezo-contact --config FILE --output DIR [--set key.path=value ...] [--quiet]
-//   piezo-contact --output DIR --resume [--quiet]
+//   piezo-contact --output DIR --resume [--set time.T=X --set time.steps=N] [--quiet]
 //
 // Exit codes: 0 success, 2 bad input (config, output directory, nothing to
 // resume), 3 the solver failed (Newton did not converge), 4 an output file
@@ -25,15 +25,20 @@ namespace
 const char* usage
     = "usage: piezo-contact --config FILE --output DIR [--set KEY.PATH=VALUE ...] "
       "[--quiet]\n"
-      "       piezo-contact --output DIR --resume [--quiet]\n";
+      "       piezo-contact --output DIR --resume [--set time.T=... --set time.steps=...] "
+      "[--quiet]\n";
 
-/// The summary.json of an interrupted or failed run in DIR, to continue it
-piezo::json resumable_summary(const std::filesystem::path& dir)
+/// The summary.json of an interrupted or failed run in DIR, to continue it,
+/// with its config. `--set time.T=... --set time.steps=...` extend a run
+/// (completed or not) at the same step size.
+std::pair<piezo::json, piezo::json> resumable_summary(const std::filesystem::path& dir,
+                                                      const std::vector<std::string>& overrides)
 {
   const auto path = dir / "summary.json";
+  const std::string where = path.string() + ": cannot resume: ";
   std::ifstream in(path);
   if (!in)
-    throw piezo::ConfigError(path.string() + ": cannot resume: no such file");
+    throw piezo::ConfigError(where + "no such file");
   piezo::json summary;
   try
   {
@@ -41,18 +46,42 @@ piezo::json resumable_summary(const std::filesystem::path& dir)
   }
   catch (const piezo::json::exception& e)
   {
-    throw piezo::ConfigError(path.string() + ": cannot resume: not valid JSON");
+    throw piezo::ConfigError(where + "not valid JSON");
   }
-  if (summary.value("solver", "") != "cpp")
-    throw piezo::ConfigError(path.string() + ": cannot resume: solver = "
-                             + summary.value("solver", piezo::json(nullptr)).dump()
+  if (!summary.is_object() or summary.value("solver", "") != "cpp")
+  {
+    const auto solver = summary.is_object() ? summary.value("solver", piezo::json(nullptr))
+                                            : piezo::json(nullptr);
+    throw piezo::ConfigError(where + "solver = " + solver.dump()
                              + ", this is the \"cpp\" solver");
+  }
   if (!summary.contains("checkpoint") or !summary.contains("config"))
-    throw piezo::ConfigError(path.string()
-                             + ": cannot resume: no checkpoint (an older version wrote it)");
-  if (summary.value("status", "") == "completed")
-    throw piezo::ConfigError(path.string() + ": cannot resume: status = \"completed\"");
-  return summary;
+    throw piezo::ConfigError(where + "no checkpoint (an older version wrote it)");
+  for (const auto& o : overrides)
+  {
+    const std::string key = o.substr(0, o.find('='));
+    if (key != "time.T" and key != "time.steps")
+      throw piezo::ConfigError(path.string() + ": --set " + key
+                               + ": only time.T and time.steps can change on --resume "
+                                 "(to extend the run)");
+  }
+  const piezo::json& old = summary["config"];
+  const piezo::json cfg = piezo::configure(old, overrides, path.string());
+  const double k_old = old["time"]["T"].get<double>() / old["time"]["steps"].get<double>();
+  const double k_new = cfg["time"]["T"].get<double>() / cfg["time"]["steps"].get<double>();
+  if (k_new != k_old)
+    throw piezo::ConfigError(path.string() + ": time.T / time.steps = " + piezo::json(k_new).dump()
+                             + ": an extended run keeps its step T/steps = "
+                             + piezo::json(k_old).dump());
+  const int done = summary["checkpoint"].value("nominal_steps", 0);
+  if (cfg["time"]["steps"].get<int>() < done)
+    throw piezo::ConfigError(path.string() + ": time.steps = " + cfg["time"]["steps"].dump()
+                             + ": the run has done " + std::to_string(done) + " steps already");
+  if (summary.value("status", "") == "completed"
+      and cfg["time"]["steps"] == old["time"]["steps"])
+    throw piezo::ConfigError(where + "status = \"completed\" (to extend it, --set time.T "
+                                     "and time.steps)");
+  return {summary, cfg};
 }
 
 /// Create DIR and check that it can be written, on rank 0; every rank then
@@ -127,8 +156,8 @@ int main(int argc, char* argv[])
   const char* bad_args = nullptr;
   if (output_dir.empty())
     bad_args = "--output is required";
-  else if (resume and (!config_path.empty() or !overrides.empty()))
-    bad_args = "--resume takes the config from DIR/summary.json: no --config, no --set";
+  else if (resume and !config_path.empty())
+    bad_args = "--resume takes the config from DIR/summary.json: no --config";
   else if (!resume and config_path.empty())
     bad_args = "--config is required";
   if (bad_args)
@@ -143,8 +172,8 @@ int main(int argc, char* argv[])
   {
     if (resume)
     {
-      const piezo::json summary = resumable_summary(output_dir);
-      piezo::run(summary["config"], output_dir, MPI_COMM_WORLD, !quiet,
+      const auto [summary, cfg] = resumable_summary(output_dir, overrides);
+      piezo::run(cfg, output_dir, MPI_COMM_WORLD, !quiet,
                  summary["config_file"].get<std::string>(), &summary);
     }
     else

@@ -277,6 +277,7 @@ json run(const json& cfg, const std::filesystem::path& out_dir, MPI_Comm comm,
     events.erase(events.begin() + state.events, events.end());
     summary.erase("error");
     summary.erase("signal");
+    summary["config"] = cfg; // a later T, when extended
     if (!summary.contains("resumed"))
       summary["resumed"] = json::array();
     summary["resumed"].push_back({{"step", state.step}, {"t", state.t}, {"mpi_size", size}});

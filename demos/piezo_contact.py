@@ -3,7 +3,8 @@
 
     /usr/bin/python3 demos/piezo_contact.py --config demos/square.json \
         --output out/py [--set mesh.n=64 --set time.steps=64]
-    /usr/bin/python3 demos/piezo_contact.py --output out/py --resume
+    /usr/bin/python3 demos/piezo_contact.py --output out/py --resume \
+        [--set time.T=2 --set time.steps=128]
 """
 
 import sys
@@ -16,8 +17,8 @@ from piezocontact import cli, config, output, twin
 def main():
     ap = cli.parser(__doc__.splitlines()[0])
     args = ap.parse_args()
-    if args.resume and (args.config or args.set):
-        ap.error("--resume takes the config from DIR/summary.json: no --config, no --set")
+    if args.resume and args.config:
+        ap.error("--resume takes the config from DIR/summary.json: no --config")
     if not args.resume and not args.config:
         ap.error("--config is required")
     twin.install_interrupt_handlers()
@@ -25,8 +26,8 @@ def main():
     comm = MPI.COMM_WORLD
     try:
         if args.resume:
-            summary = cli.resumable_summary(args.output, "python")
-            twin.run(summary["config"], args.output, comm, progress=not args.quiet,
+            summary, cfg = cli.resumable_summary(args.output, "python", args.set)
+            twin.run(cfg, args.output, comm, progress=not args.quiet,
                      source=summary["config_file"], resume=summary)
         else:
             cfg = config.load(args.config, args.set)

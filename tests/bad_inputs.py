@@ -118,9 +118,11 @@ def main():
             "stays readable. SIGINT and SIGTERM stop it with exit code 130 and 143, status "
             "\"interrupted\". `--resume` refuses, with exit code 2, a directory without "
             "summary.json (`DIR/summary.json: cannot resume: no such file`), a completed run "
-            "(`cannot resume: status = \"completed\"`), the other solver's run (`cannot "
-            "resume: solver = \"python\", this is the \"cpp\" solver`) and `--config` or "
-            "`--set` beside it. Checked by `tests/test_interrupts.py`.\n",
+            "(`cannot resume: status = \"completed\"`, unless extended to a later `time.T` at "
+            "the same step: `--set time.T=... --set time.steps=...`, the only keys `--resume` "
+            "takes), the other solver's run (`cannot resume: solver = \"python\", this is "
+            "the \"cpp\" solver`) and `--config` beside it. Checked by "
+            "`tests/test_interrupts.py`.\n",
             "| bad input | message (C++ solver, config `demos/...` or a scratch file) |",
             "|---|---|"]
     exe = ROOT / "build" / "piezo-contact"

@@ -47,8 +47,10 @@ def kill9(proc):
     proc.wait()
 
 
-def resume(solver, out, np_=1, check=True):
+def resume(solver, out, np_=1, check=True, overrides=()):
     args = command(solver, np_) + ["--output", str(out), "--resume", "--quiet"]
+    for o in overrides:
+        args += ["--set", o]
     proc = subprocess.run(args, capture_output=True, text=True, env=ENV, timeout=600)
     if check and proc.returncode != 0:
         raise AssertionError(f"{' '.join(args)} failed ({proc.returncode}):\n{proc.stderr}")
@@ -220,6 +222,28 @@ def test_resume_keeps_step_cuts(solver, tmp_path):
     assert_same_run(full, resumed, REL[solver])
 
 
+def test_resume_extends_a_run_to_a_later_time(solver, tmp_path):
+    """A completed run to T = 0.5, extended to T = 1 at the same step,
+    equals the run to T = 1; the step size cannot change, nor other keys."""
+    base = ["mesh.n=16", "output.nodal=all"]
+    full, _ = run_solver(solver, tmp_path / "full", base + ["time.T=1", "time.steps=40"])
+    short = tmp_path / "short"
+    run_solver(solver, short, base + ["time.T=0.5", "time.steps=20"])
+    for bad, message in [
+            (["time.T=1", "time.steps=30"], "an extended run keeps its step T/steps = 0.025"),
+            (["mesh.n=8"], "--set mesh.n: only time.T and time.steps can change on --resume"),
+            (["time.T=0.25", "time.steps=10"], "time.steps = 10: the run has done 20 steps"),
+            ([], 'cannot resume: status = "completed" (to extend it')]:
+        _, proc = resume(solver, short, check=False, overrides=bad)
+        assert proc.returncode == 2 and message in proc.stderr, proc.stderr
+    extended, _ = resume(solver, short, overrides=["time.T=1", "time.steps=40"])
+    assert extended["status"] == "completed" and len(extended["steps"]) == 40
+    assert_same_run(full, extended, REL[solver])
+    np.testing.assert_allclose(np.load(short / "nodal" / "u_0040.npy"),
+                               np.load(tmp_path / "full" / "nodal" / "u_0040.npy"),
+                               rtol=REL[solver], atol=0)
+
+
 @pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])
 def test_signal_stops_cleanly(solver, sig, tmp_path):
     """SIGINT/SIGTERM: the step under way is abandoned, the summary says
@@ -262,7 +286,7 @@ def test_sigterm_under_mpirun_stops_every_rank(solver, tmp_path):
 
 def test_resume_refuses_what_it_cannot_continue(solver, tmp_path):
     """Nothing to resume, a completed run, another solver's run, --config
-    with --resume: one line, exit 2."""
+    with --resume: one line, exit 2."""  # extending: test_resume_extends_...
     _, proc = resume(solver, tmp_path / "none", check=False)
     assert proc.returncode == 2
     assert proc.stderr.strip().splitlines()[-1] == \
@@ -270,7 +294,7 @@ def test_resume_refuses_what_it_cannot_continue(solver, tmp_path):
     run_solver(solver, tmp_path / "done", ["mesh.n=4", "time.steps=2"])
     _, proc = resume(solver, tmp_path / "done", check=False)
     assert proc.returncode == 2 and proc.stderr.strip().endswith(
-        'cannot resume: status = "completed"')
+        'cannot resume: status = "completed" (to extend it, --set time.T and time.steps)')
     other = {"cpp": "python", "python": "cpp"}[solver]
     s = json.loads((tmp_path / "done" / "summary.json").read_text())
     s["status"], s["solver"] = "running", other
@@ -281,7 +305,7 @@ def test_resume_refuses_what_it_cannot_continue(solver, tmp_path):
     args = command(solver) + ["--output", str(tmp_path / "done"), "--resume",
                               "--config", str(SQUARE)]
     proc = subprocess.run(args, capture_output=True, text=True, env=ENV)
-    assert proc.returncode == 2 and "no --config, no --set" in proc.stderr
+    assert proc.returncode == 2 and "DIR/summary.json: no --config" in proc.stderr
 
 
 @pytest.fixture

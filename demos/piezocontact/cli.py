@@ -61,22 +61,41 @@ def prepare_output(path, source, comm):
         raise config.ConfigError(error)
 
 
-def resumable_summary(out_dir, solver):
-    """The summary.json of an interrupted or failed run in DIR, to continue it."""
+def resumable_summary(out_dir, solver, overrides=()):
+    """The summary.json of an interrupted or failed run in DIR, to continue
+    it, with its config. `--set time.T=... --set time.steps=...` extend a
+    run (completed or not) at the same step size."""
     path = Path(out_dir) / "summary.json"
+    where = f"{path}: cannot resume: "
     try:
         summary = json.loads(path.read_text())
     except OSError:
-        raise config.ConfigError(f"{path}: cannot resume: no such file") from None
+        raise config.ConfigError(where + "no such file") from None
     except ValueError:
-        raise config.ConfigError(f"{path}: cannot resume: not valid JSON") from None
+        raise config.ConfigError(where + "not valid JSON") from None
     if not isinstance(summary, dict) or summary.get("solver") != solver:
         found = summary.get("solver") if isinstance(summary, dict) else None
-        raise config.ConfigError(f"{path}: cannot resume: solver = {json.dumps(found)}, "
-                                 f"this is the \"{solver}\" solver")
+        raise config.ConfigError(where + f'solver = {json.dumps(found)}, '
+                                 f'this is the "{solver}" solver')
     if "checkpoint" not in summary or "config" not in summary:
-        raise config.ConfigError(f"{path}: cannot resume: no checkpoint "
-                                 "(an older version wrote it)")
-    if summary.get("status") == "completed":
-        raise config.ConfigError(f'{path}: cannot resume: status = "completed"')
-    return summary
+        raise config.ConfigError(where + "no checkpoint (an older version wrote it)")
+    for o in overrides:
+        key = o.split("=", 1)[0]
+        if key not in ("time.T", "time.steps"):
+            raise config.ConfigError(f"{path}: --set {key}: only time.T and time.steps can "
+                                     "change on --resume (to extend the run)")
+    old = summary["config"]
+    cfg = config.configure(json.loads(json.dumps(old)), overrides, str(path))
+    k_old = old["time"]["T"] / old["time"]["steps"]
+    k_new = cfg["time"]["T"] / cfg["time"]["steps"]
+    if k_new != k_old:
+        raise config.ConfigError(f"{path}: time.T / time.steps = {k_new!r}: an extended run "
+                                 f"keeps its step T/steps = {k_old!r}")
+    done = summary["checkpoint"].get("nominal_steps", 0)
+    if cfg["time"]["steps"] < done:
+        raise config.ConfigError(f"{path}: time.steps = {cfg['time']['steps']}: the run has "
+                                 f"done {done} steps already")
+    if summary.get("status") == "completed" and cfg["time"]["steps"] == old["time"]["steps"]:
+        raise config.ConfigError(where + 'status = "completed" (to extend it, --set time.T '
+                                 "and time.steps)")
+    return summary, cfg

@@ -253,6 +253,11 @@ def load(path, overrides=()):
     except json.JSONDecodeError as err:
         raise ConfigError(f"{source}: invalid JSON at line {err.lineno} column {err.colno}: "
                           f"{err.msg}") from None
+    return configure(cfg, overrides, source)
+
+
+def configure(cfg, overrides, source):
+    """Apply overrides to a config and validate it; errors name `source`."""
     for text in overrides:
         key, value = _parse_override(text, source)
         apply_override(cfg, key, value, source)

@@ -162,6 +162,7 @@ def run(cfg, out_dir, comm, progress=True, source="config", resume=None):
         del summary["events"][state["events"]:]
         summary.pop("error", None)
         summary.pop("signal", None)
+        summary["config"] = cfg  # a later T, when extended
         summary.setdefault("resumed", []).append(
             {"step": state["step"], "t": state["t"], "mpi_size": comm.size})
         summary["mpi_size"] = comm.size
