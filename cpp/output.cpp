@@ -243,6 +243,8 @@ Writer::Writer(const Problem& problem, const fs::path& dir, int resume_step)
                  }
                  remove_numbered_after(dir / "solution", "step_", ".h5", resume_step);
                  remove_numbered_after(dir / "solution", "step_", ".xdmf", -1);
+                 // checkpoints of an earlier run, or written after the one resumed
+                 remove_numbered_after(dir / "checkpoint", "state_", ".npy", resume_step);
                  remove_numbered_after(dir / "nodal", "u_", ".npy", resume_step);
                  remove_numbered_after(dir / "nodal", "phi_", ".npy", resume_step);
                  fs::create_directories(dir / "nodal");

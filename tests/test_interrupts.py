@@ -243,6 +243,13 @@ def test_resume_extends_a_run_to_a_later_time(solver, tmp_path):
     np.testing.assert_allclose(np.load(short / "nodal" / "u_0040.npy"),
                                np.load(tmp_path / "full" / "nodal" / "u_0040.npy"),
                                rtol=REL[solver], atol=0)
+    # a fresh run in the same directory keeps nothing of the earlier one
+    run_solver(solver, short, base + ["time.steps=3"])
+    assert sorted(p.name for p in (short / "solution").iterdir()) == \
+        [f"step_{i:06d}.h5" for i in (1, 2, 3)]
+    assert [p.name for p in (short / "checkpoint").iterdir()] == ["state_000003.npy"]
+    assert len(list((short / "nodal").iterdir())) == 6
+    assert check_outputs(short, status="completed") == 3
 
 
 @pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])

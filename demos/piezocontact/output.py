@@ -187,6 +187,8 @@ class Writer:
             _remove_numbered_after(d / "solution", "step_", ".h5", -1)
         _remove_numbered_after(d / "solution", "step_", ".h5", resume_step)
         _remove_numbered_after(d / "solution", "step_", ".xdmf", -1)
+        # checkpoints of an earlier run, or written after the one resumed
+        _remove_numbered_after(d / "checkpoint", "state_", ".npy", resume_step)
         for name in ("u_", "phi_"):
             _remove_numbered_after(d / "nodal", name, ".npy", resume_step)
         (d / "nodal").mkdir(parents=True, exist_ok=True)
