@@ -293,10 +293,11 @@ void Writer::write_hdf5(const fs::path& xdmf,
   // XDMFFile::close() throws on a failed H5Fclose and leaves the handle set,
   // so its destructor would throw again (std::terminate): on failure the
   // object is deliberately leaked, the run ends anyway.
-  auto file = std::make_unique<io::XDMFFile>(_problem.comm, xdmf, "w");
+  std::unique_ptr<io::XDMFFile> file;
   try
   {
     errno = 0;
+    file = std::make_unique<io::XDMFFile>(_problem.comm, xdmf, "w"); // H5Fcreate may fail
     write(*file);
     file->close();
   }
