@@ -22,9 +22,11 @@ def command(solver, np_=1):
     return (["mpirun", "-n", str(np_)] if np_ > 1 else []) + exe
 
 
-def run_solver(solver, out, overrides=(), config=SQUARE, np_=1, check=True):
-    """Run one solver; return (summary or None, CompletedProcess)."""
-    args = command(solver, np_) + ["--config", str(config), "--output", str(out), "--quiet"]
+def run_solver(solver, out, overrides=(), config=SQUARE, np_=1, check=True, resume=False):
+    """Run one solver (with resume: continue the run in `out`, no config);
+    return (summary or None, CompletedProcess)."""
+    args = command(solver, np_) + (["--resume"] if resume else ["--config", str(config)]) \
+        + ["--output", str(out), "--quiet"]
     for o in overrides:
         args += ["--set", o]
     proc = subprocess.run(args, capture_output=True, text=True, env=ENV, timeout=600)

@@ -48,14 +48,7 @@ def kill9(proc):
 
 
 def resume(solver, out, np_=1, check=True, overrides=()):
-    args = command(solver, np_) + ["--output", str(out), "--resume", "--quiet"]
-    for o in overrides:
-        args += ["--set", o]
-    proc = subprocess.run(args, capture_output=True, text=True, env=ENV, timeout=600)
-    if check and proc.returncode != 0:
-        raise AssertionError(f"{' '.join(args)} failed ({proc.returncode}):\n{proc.stderr}")
-    summary = Path(out) / "summary.json"
-    return (json.loads(summary.read_text()) if summary.exists() else None), proc
+    return run_solver(solver, out, overrides, np_=np_, check=check, resume=True)
 
 
 def indexed_steps(out):
