@@ -93,9 +93,10 @@ void remove_quietly(const fs::path& path)
   fs::remove(path, ec);
 }
 
-/// Files DIR/prefix*suffix whose number (the digits between) is > last
+/// Files DIR/prefix*suffix whose number (the digits between) is > last,
+/// but number `keep`
 void remove_numbered_after(const fs::path& dir, const std::string& prefix,
-                           const std::string& suffix, int last)
+                           const std::string& suffix, int last, int keep = -1)
 {
   std::error_code ec;
   if (!fs::is_directory(dir, ec))
@@ -109,7 +110,7 @@ void remove_numbered_after(const fs::path& dir, const std::string& prefix,
     const std::string digits
         = name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
     if (digits.find_first_not_of("0123456789") == std::string::npos
-        and std::stoll(digits) > last)
+        and std::stoll(digits) > last and std::stoll(digits) != keep)
       remove_quietly(entry.path());
   }
 }
@@ -243,8 +244,10 @@ Writer::Writer(const Problem& problem, const fs::path& dir, int resume_step)
                  }
                  remove_numbered_after(dir / "solution", "step_", ".h5", resume_step);
                  remove_numbered_after(dir / "solution", "step_", ".xdmf", -1);
-                 // checkpoints of an earlier run, or written after the one resumed
-                 remove_numbered_after(dir / "checkpoint", "state_", ".npy", resume_step);
+                 // every checkpoint but the one resumed (a kill
+                 // may land between a summary and the removal of its predecessor's)
+                 remove_numbered_after(dir / "checkpoint", "state_", ".npy", -1,
+                                       resume_step > 0 ? resume_step : -1);
                  remove_numbered_after(dir / "nodal", "u_", ".npy", resume_step);
                  remove_numbered_after(dir / "nodal", "phi_", ".npy", resume_step);
                  fs::create_directories(dir / "nodal");

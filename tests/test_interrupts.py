@@ -230,8 +230,14 @@ def test_resume_extends_a_run_to_a_later_time(solver, tmp_path):
             ([], 'cannot resume: status = "completed" (to extend it')]:
         _, proc = resume(solver, short, check=False, overrides=bad)
         assert proc.returncode == 2 and message in proc.stderr, proc.stderr
+    # leftovers a kill can leave: the previous step's checkpoint (killed
+    # between the summary and its removal) and a later one of an earlier run
+    for stale in (19, 31):
+        (short / "checkpoint" / f"state_{stale:06d}.npy").write_bytes(
+            (short / "checkpoint" / "state_000020.npy").read_bytes())
     extended, _ = resume(solver, short, overrides=["time.T=1", "time.steps=40"])
     assert extended["status"] == "completed" and len(extended["steps"]) == 40
+    assert [p.name for p in (short / "checkpoint").iterdir()] == ["state_000040.npy"]
     assert_same_run(full, extended, REL[solver])
     np.testing.assert_allclose(np.load(short / "nodal" / "u_0040.npy"),
                                np.load(tmp_path / "full" / "nodal" / "u_0040.npy"),

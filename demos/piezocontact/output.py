@@ -187,8 +187,12 @@ class Writer:
             _remove_numbered_after(d / "solution", "step_", ".h5", -1)
         _remove_numbered_after(d / "solution", "step_", ".h5", resume_step)
         _remove_numbered_after(d / "solution", "step_", ".xdmf", -1)
-        # checkpoints of an earlier run, or written after the one resumed
-        _remove_numbered_after(d / "checkpoint", "state_", ".npy", resume_step)
+        # every checkpoint but the one resumed (a kill may
+        # land between a summary and the removal of its predecessor's)
+        if (d / "checkpoint").is_dir():
+            for p in (d / "checkpoint").glob("state_*.npy"):
+                if p.name != f"state_{resume_step:06d}.npy" or resume_step == 0:
+                    remove_quietly(p)
         for name in ("u_", "phi_"):
             _remove_numbered_after(d / "nodal", name, ".npy", resume_step)
         (d / "nodal").mkdir(parents=True, exist_ok=True)
