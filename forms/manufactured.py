@@ -71,7 +71,7 @@ def exact_solution(mesh, data):
     return u, PHI0 * theta * Phi, ufl.diff(u, t)
 
 
-def loads(y, ds, data):
+def loads(y, ds, data, law=pf.p):
     """The body force, charge, tractions, surface charges and the foundation's
     pressure of the exact solution, as a linear form in the test function y."""
     mesh = y.ufl_domain()
@@ -84,13 +84,13 @@ def loads(y, ds, data):
     D = pf.electric_displacement(u, phi, data)
     body = ufl.inner(-ufl.div(sigma), w) * dx + ufl.div(D) * psi * dx
     surface = ufl.inner(ufl.dot(sigma, n), w) * ds_all - ufl.dot(D, n) * psi * ds_all
-    return body + surface + pf.contact_term(u, w, n, ds, data)
+    return body + surface + pf.contact_term(u, w, n, ds, data, law)
 
 
-def residual(x, x_prev, y, ds, data):
+def residual(x, x_prev, y, ds, data, law=pf.p):
     """The model's residual with the loads of the exact solution. Its
     Jacobian is piezo_forms' (the loads do not depend on x)."""
-    return pf.residual(x, x_prev, y, ds, data) - loads(y, ds, data)
+    return pf.residual(x, x_prev, y, ds, data, law) - loads(y, ds, data, law)
 
 
 def squared_errors(x, data):

@@ -10,7 +10,8 @@ This module is the single source of truth for every term. It is used twice:
   * the Python twin calls it with dolfinx Functions/Constants, and dolfinx
     JIT-compiles the very same expressions.
 All material data, loads and the time step are Constants (runtime data).
-Changing the law `p` or adding a term is an edit here and a rebuild.
+Changing the law `p` or adding a term is an edit here (and a rebuild of the
+executable); from Python, the law can also be passed in (`law=`).
 """
 
 import ufl
@@ -64,17 +65,18 @@ def gap_function(u, n, data):
     return ufl.dot(u, n) - data["g"]
 
 
-def contact_pressure(u, n, data):
-    """Normal contact pressure -sigma_nu = p(u.nu - g) (2.7)."""
-    return p(gap_function(u, n, data), data["c_p"])
+def contact_pressure(u, n, data, law=p):
+    """Normal contact pressure -sigma_nu = law(u.nu - g, c_p) (2.7)."""
+    return law(gap_function(u, n, data), data["c_p"])
 
 
-def residual(x, x_prev, y, ds, data):
+def residual(x, x_prev, y, ds, data, law=p):
     """Residual F(x; y) of (3.3)-(3.4) at the new time level.
 
     x, x_prev: mixed (u, phi) at t_n and t_{n-1}; y: mixed test function;
     ds: exterior-facet measure whose subdomain ids are 1..MAX_BOUNDARIES.
-    data: dict of Constants, see `constant_shapes`.
+    data: dict of Constants, see `constant_shapes`; law(r, c_p): the
+    normal compliance law.
     """
     u, phi = ufl.split(x)
     u_prev, _ = ufl.split(x_prev)
@@ -95,14 +97,14 @@ def residual(x, x_prev, y, ds, data):
         traction = ufl.as_vector([data["fF"][s, 0], data["fF"][s, 1]])
         F -= ufl.inner(traction, w) * ds(s + 1)
         F -= data["qF"][s] * psi * ds(s + 1)
-    return F + contact_term(u, w, n, ds, data)
+    return F + contact_term(u, w, n, ds, data, law)
 
 
-def contact_term(u, w, n, ds, data):
+def contact_term(u, w, n, ds, data, law=p):
     """j(u, w) of (2.18): normal compliance on the boundaries switched on as
     contact (chi = 1). Assembled alone, minus it is the nodal force of the
     foundation on the body."""
-    return sum(data["chi"][s] * contact_pressure(u, n, data) * ufl.dot(w, n)
+    return sum(data["chi"][s] * contact_pressure(u, n, data, law) * ufl.dot(w, n)
                * ds(s + 1, degree=CONTACT_QUADRATURE_DEGREE) for s in range(MAX_BOUNDARIES))
 
 
@@ -111,21 +113,21 @@ def jacobian(F, x, dx_trial):
     return ufl.derivative(F, x, dx_trial)
 
 
-def contact_jacobian(x, y, dx_trial, ds, data):
+def contact_jacobian(x, y, dx_trial, ds, data, law=p):
     """The derivative of contact_term alone: the only part of the Jacobian
     that depends on the state (the bulk is linear)."""
     u, _ = ufl.split(x)
     w, _ = ufl.split(y)
     n = ufl.FacetNormal(x.ufl_domain())
-    return ufl.derivative(contact_term(u, w, n, ds, data), x, dx_trial)
+    return ufl.derivative(contact_term(u, w, n, ds, data, law), x, dx_trial)
 
 
-def contact_force(x, ds, data, i):
+def contact_force(x, ds, data, i, law=p):
     """Component i of the resultant force of the foundation on the body,
     -int_{Gamma_C} p(u.nu - g) nu ds (N/m per unit thickness)."""
     u, _ = ufl.split(x)
     n = ufl.FacetNormal(x.ufl_domain())
-    return sum(-data["chi"][s] * contact_pressure(u, n, data) * n[i]
+    return sum(-data["chi"][s] * contact_pressure(u, n, data, law) * n[i]
                * ds(s + 1, degree=CONTACT_QUADRATURE_DEGREE) for s in range(MAX_BOUNDARIES))
 
 

@@ -21,7 +21,7 @@ header = f"""// Generated from forms/piezo_forms.py by forms/write_cpp_header.py
 #include <string>
 #include <vector>
 
-namespace piezo::forms
+namespace piezocontact::forms
 {{
 /// Facet tags 1..max_boundaries carry the named boundaries
 inline constexpr int max_boundaries = {pf.MAX_BOUNDARIES};
@@ -35,7 +35,7 @@ inline const std::map<std::string, std::vector<std::size_t>> constant_shapes = {
 inline const std::map<std::string, std::vector<std::size_t>> manufactured_constant_shapes = {{
 {cpp_map(mms.constant_shapes())}
 }};
-}} // namespace piezo::forms
+}} // namespace piezocontact::forms
 """
 with open(sys.argv[1], "w") as out:
     out.write(header)

@@ -13,6 +13,8 @@ PACKAGES=(
   python3-gmsh
   # build: compilers, CMake, pkg-config (PETSc), JSON for the C++ config
   cmake g++ make pkg-config nlohmann-json3-dev libgtest-dev
+  # Python bindings of the C++ core
+  pybind11-dev python3-dev
   # MPI launcher; OpenBLAS makes MUMPS' LU ~3x faster than reference BLAS
   openmpi-bin libopenblas0
   # tests and pictures

@@ -1,7 +1,7 @@
 // Unit tests of the C++ config reader: the schema rules, --set overrides and
 // the wording of errors (the pytest suite checks the Python side says the same).
-#include "config.h"
-#include "output.h"
+#include <piezocontact/config.h>
+#include <piezocontact/output.h>
 
 #include <filesystem>
 #include <fstream>
@@ -16,9 +16,9 @@ std::string error_of(const std::vector<std::string>& overrides)
 {
   try
   {
-    piezo::load_config(square, overrides);
+    piezocontact::load_config(square, overrides);
   }
-  catch (const piezo::ConfigError& e)
+  catch (const piezocontact::ConfigError& e)
   {
     return e.what();
   }
@@ -28,21 +28,21 @@ std::string error_of(const std::vector<std::string>& overrides)
 
 TEST(Config, DefaultsAreFilledAndNumbersAreDoubles)
 {
-  const auto cfg = piezo::load_config(square, {});
+  const auto cfg = piezocontact::load_config(square, {});
   EXPECT_EQ(cfg["solver"]["newton"]["rtol"].get<double>(), 1e-10);
   EXPECT_EQ(cfg["output"]["nodal"], "final");
-  EXPECT_EQ(cfg["loads"]["body_force"], piezo::json::array({0.0, 0.0}));
+  EXPECT_EQ(cfg["loads"]["body_force"], piezocontact::json::array({0.0, 0.0}));
   EXPECT_TRUE(cfg["contact"]["gap"].is_number_float());
 }
 
 TEST(Config, OverridesSetNestedValuesAndListItems)
 {
-  const auto cfg = piezo::load_config(
+  const auto cfg = piezocontact::load_config(
       square, {"mesh.n=64", "time.T=2", "probes.1=[0.25,0.5]",
                "solver.petsc_options.pc_factor_mat_solver_type=superlu_dist"});
   EXPECT_EQ(cfg["mesh"]["n"].get<int>(), 64);
   EXPECT_EQ(cfg["time"]["T"].get<double>(), 2.0);
-  EXPECT_EQ(cfg["probes"][1], piezo::json::array({0.25, 0.5}));
+  EXPECT_EQ(cfg["probes"][1], piezocontact::json::array({0.25, 0.5}));
   EXPECT_EQ(cfg["solver"]["petsc_options"]["pc_factor_mat_solver_type"], "superlu_dist");
 }
 
@@ -67,15 +67,15 @@ TEST(Config, ErrorsNameFileKeyAndValue)
 
 TEST(Config, ClosestKey)
 {
-  EXPECT_EQ(piezo::closest_key("stpes", {"T", "steps"}), "steps");
-  EXPECT_EQ(piezo::closest_key("materal", {"mesh", "material"}), "material");
-  EXPECT_EQ(piezo::closest_key("xyz", {"T", "steps"}), "");
+  EXPECT_EQ(piezocontact::closest_key("stpes", {"T", "steps"}), "steps");
+  EXPECT_EQ(piezocontact::closest_key("materal", {"mesh", "material"}), "material");
+  EXPECT_EQ(piezocontact::closest_key("xyz", {"T", "steps"}), "");
 }
 
 TEST(Output, NpyHeaderIsAlignedAndDataFollows)
 {
   const auto path = std::filesystem::temp_directory_path() / "piezo_test.npy";
-  piezo::write_npy(path, {1.0, 2.0, 3.0, 4.0, 5.0, 6.0}, 3, 2);
+  piezocontact::write_npy(path, {1.0, 2.0, 3.0, 4.0, 5.0, 6.0}, 3, 2);
   std::ifstream in(path, std::ios::binary);
   std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   ASSERT_EQ(bytes.substr(0, 6), "\x93NUMPY");

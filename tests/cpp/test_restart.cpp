@@ -1,7 +1,7 @@
 // What --resume rests on: the step control continues from a restored state
 // exactly as it would have, and the checkpoint files read back bit for bit.
-#include "output.h"
-#include "step_control.h"
+#include <piezocontact/output.h>
+#include <piezocontact/step_control.h>
 
 #include <filesystem>
 #include <gtest/gtest.h>
@@ -11,7 +11,7 @@
 namespace
 {
 /// (t, k) of every try until done, rejecting the tries listed
-std::vector<std::pair<double, double>> tries(piezo::StepControl& s,
+std::vector<std::pair<double, double>> tries(piezocontact::StepControl& s,
                                              const std::vector<int>& rejected, int first = 0)
 {
   std::vector<std::pair<double, double>> out;
@@ -31,9 +31,9 @@ TEST(StepControl, RestoredAfterAnyAcceptedStepContinuesTheSame)
 {
   // tries 0-2 fail (k = T/N / 8 kept until the first nominal time), 9 and 10 too
   const std::vector<int> rejected = {0, 1, 2, 9, 10};
-  piezo::StepControl reference(1.0, 7, 4);
+  piezocontact::StepControl reference(1.0, 7, 4);
   const auto all = tries(reference, rejected);
-  piezo::StepControl run(1.0, 7, 4);
+  piezocontact::StepControl run(1.0, 7, 4);
   for (int i = 0; !run.done(); ++i)
   {
     run.attempt();
@@ -43,7 +43,7 @@ TEST(StepControl, RestoredAfterAnyAcceptedStepContinuesTheSame)
       continue;
     }
     run.accept();
-    piezo::StepControl resumed(1.0, 7, 4);
+    piezocontact::StepControl resumed(1.0, 7, 4);
     resumed.restore(run.nominal_steps(), run.t, run.k, run.k_last, run.accepted);
     const auto rest = tries(resumed, rejected, i + 1);
     ASSERT_EQ(rest.size(), all.size() - i - 1) << "restored after try " << i;
@@ -65,8 +65,8 @@ TEST(Output, NpyReadsBackBitForBit)
     v = dist(gen);
   data[5] = 1e-310; // subnormal
   const auto path = std::filesystem::temp_directory_path() / "piezo_restart_test.npy";
-  piezo::write_npy(path, data, 37, 9);
-  const auto [back, rows, cols] = piezo::read_npy(path);
+  piezocontact::write_npy(path, data, 37, 9);
+  const auto [back, rows, cols] = piezocontact::read_npy(path);
   EXPECT_EQ(rows, 37u);
   EXPECT_EQ(cols, 9u);
   EXPECT_EQ(back, data);
@@ -77,14 +77,14 @@ TEST(Output, AtomicWriteLeavesNoPartialFile)
 {
   const auto dir = std::filesystem::temp_directory_path() / "piezo_atomic_test";
   std::filesystem::create_directories(dir);
-  piezo::write_json_atomic(dir / "a.json", {{"x", 1}});
+  piezocontact::write_json_atomic(dir / "a.json", {{"x", 1}});
   // a directory that does not exist: the error names the file, nothing is left
   try
   {
-    piezo::write_json_atomic(dir / "missing" / "b.json", {{"x", 2}});
+    piezocontact::write_json_atomic(dir / "missing" / "b.json", {{"x", 2}});
     FAIL() << "no OutputError";
   }
-  catch (const piezo::OutputError& e)
+  catch (const piezocontact::OutputError& e)
   {
     EXPECT_EQ(std::string(e.what()),
               "cannot write " + (dir / "missing" / "b.json").string()

@@ -1,0 +1,552 @@
+#include "config.h"
+#include "schema.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+namespace piezocontact
+{
+using namespace dolfinx;
+namespace
+{
+std::string fmt(const json& v) { return v.dump(); }
+
+std::string fmt_g(double v)
+{
+  char buf[64];
+  std::snprintf(buf, sizeof(buf), "%g", v);
+  return buf;
+}
+
+std::string join(const std::string& path, const std::string& key)
+{
+  return path.empty() ? key : path + "." + key;
+}
+
+[[noreturn]] void fail(const std::string& source, const std::string& what)
+{
+  throw ConfigError(source + ": " + what);
+}
+
+// Optimal string alignment distance (swaps of neighbours count 1).
+std::size_t edit_distance(const std::string& a, const std::string& b)
+{
+  std::vector<std::vector<std::size_t>> d(a.size() + 1,
+                                          std::vector<std::size_t>(b.size() + 1));
+  for (std::size_t i = 0; i <= a.size(); ++i)
+    d[i][0] = i;
+  for (std::size_t j = 0; j <= b.size(); ++j)
+    d[0][j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i)
+    for (std::size_t j = 1; j <= b.size(); ++j)
+    {
+      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1,
+                          d[i - 1][j - 1] + (a[i - 1] != b[j - 1])});
+      if (i > 1 and j > 1 and a[i - 1] == b[j - 2] and a[i - 2] == b[j - 1])
+        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+    }
+  return d[a.size()][b.size()];
+}
+
+bool is_number(const json& v)
+{
+  return v.is_number() and std::isfinite(v.get<double>());
+}
+
+void check_bounds(const json& v, const json& rule, const std::string& path,
+                  const std::string& source)
+{
+  const double x = v.get<double>();
+  if (rule.contains("min") and x < rule["min"].get<double>())
+    fail(source, path + " = " + fmt(v) + ": must be >= " + fmt(rule["min"]));
+  if (rule.contains("exclusive_min")
+      and x <= rule["exclusive_min"].get<double>())
+    fail(source,
+         path + " = " + fmt(v) + ": must be > " + fmt(rule["exclusive_min"]));
+}
+
+bool is_number_list(const json& v, std::size_t n)
+{
+  return v.is_array() and v.size() == n
+         and std::all_of(v.begin(), v.end(), is_number);
+}
+
+json to_doubles(const json& v)
+{
+  if (v.is_array())
+  {
+    json out = json::array();
+    for (const auto& item : v)
+      out.push_back(to_doubles(item));
+    return out;
+  }
+  return v.get<double>();
+}
+
+// Validate `value` against `rule`; return it with defaults filled in.
+json check(const json& value, const json& rule, const std::string& path,
+           const std::string& source)
+{
+  const std::string t = rule["type"];
+  // a word allowed instead of the value
+  const json alternative = rule.value("alternative", json());
+  if (!alternative.is_null() and value == alternative)
+    return value;
+  auto wrong = [&](const std::string& expected)
+  {
+    fail(source, path + " = " + fmt(value) + ": expected " + expected
+                     + (alternative.is_null() ? "" : " or " + fmt(alternative)));
+  };
+
+  if (t == "object")
+  {
+    if (!value.is_object())
+      wrong("an object");
+    const json& keys = rule["keys"];
+    std::vector<std::string> names;
+    for (const auto& [k, _] : keys.items())
+      names.push_back(k);
+    for (const auto& [k, _] : value.items())
+    {
+      if (!keys.contains(k))
+      {
+        const std::string near = closest_key(k, names);
+        const std::string hint
+            = near.empty() ? "" : " (did you mean '" + join(path, near) + "'?)";
+        fail(source, join(path, k) + ": unknown key" + hint);
+      }
+    }
+    json out = json::object();
+    for (const auto& [k, sub] : keys.items())
+    {
+      if (value.contains(k))
+        out[k] = check(value[k], sub, join(path, k), source);
+      else if (sub.contains("default"))
+        out[k] = check(sub["default"], sub, join(path, k), source);
+      else if (sub.value("required", false))
+        fail(source, join(path, k) + ": missing required key");
+    }
+    return out;
+  }
+  if (t == "map")
+  {
+    if (!value.is_object())
+      wrong("an object");
+    json out = json::object();
+    for (const auto& [k, v] : value.items())
+      out[k] = check(v, rule["values"], join(path, k), source);
+    return out;
+  }
+  if (t == "number")
+  {
+    if (!is_number(value))
+      wrong("a number");
+    check_bounds(value, rule, path, source);
+    return value.get<double>();
+  }
+  if (t == "integer")
+  {
+    if (!value.is_number_integer())
+      wrong("an integer");
+    check_bounds(value, rule, path, source);
+    return value;
+  }
+  if (t == "boolean")
+  {
+    if (!value.is_boolean())
+      wrong("true or false");
+    return value;
+  }
+  if (t == "string")
+  {
+    if (!value.is_string())
+      wrong("a string");
+    if (rule.contains("enum"))
+    {
+      const json& e = rule["enum"];
+      if (std::find(e.begin(), e.end(), value) == e.end())
+      {
+        std::string options;
+        for (const auto& o : e)
+          options += (options.empty() ? "" : ", ") + o.get<std::string>();
+        wrong("one of " + options);
+      }
+    }
+    return value;
+  }
+  if (t == "scalar")
+  {
+    if (!(value.is_string() or value.is_boolean() or is_number(value)))
+      wrong("a string, number or boolean");
+    return value;
+  }
+  if (t == "vector")
+  {
+    const std::size_t n = rule["length"];
+    if (!is_number_list(value, n))
+      wrong("a list of " + std::to_string(n) + " numbers");
+    return to_doubles(value);
+  }
+  if (t == "matrix")
+  {
+    const std::size_t r = rule["shape"][0], c = rule["shape"][1];
+    if (!(value.is_array() and value.size() == r
+          and std::all_of(value.begin(), value.end(),
+                          [c](const json& row) { return is_number_list(row, c); })))
+    {
+      wrong("a " + std::to_string(r) + "x" + std::to_string(c)
+            + " matrix (list of " + std::to_string(r) + " rows of "
+            + std::to_string(c) + " numbers)");
+    }
+    return to_doubles(value);
+  }
+  if (t == "points")
+  {
+    if (!(value.is_array()
+          and std::all_of(value.begin(), value.end(),
+                          [](const json& p) { return is_number_list(p, 2); })))
+      wrong("a list of [x, y] points");
+    return to_doubles(value);
+  }
+  throw std::logic_error("schema: unknown type " + t);
+}
+
+using Matrix = std::vector<std::vector<double>>;
+
+void check_symmetric(const Matrix& m, const std::string& path,
+                     const std::string& source)
+{
+  for (std::size_t i = 0; i < m.size(); ++i)
+    for (std::size_t j = i + 1; j < m.size(); ++j)
+    {
+      const double scale
+          = std::max({std::abs(m[i][j]), std::abs(m[j][i]), 1e-300});
+      if (std::abs(m[i][j] - m[j][i]) > 1e-12 * scale)
+      {
+        fail(source, path + " = " + fmt(json(m)) + ": must be symmetric (entry ["
+                         + std::to_string(i) + "][" + std::to_string(j)
+                         + "] = " + fmt_g(m[i][j]) + " but ["
+                         + std::to_string(j) + "][" + std::to_string(i)
+                         + "] = " + fmt_g(m[j][i]) + ")");
+      }
+    }
+}
+
+void check_spd(const Matrix& m, const std::string& path,
+               const std::string& source, const std::string& why)
+{
+  check_symmetric(m, path, source);
+  // Sylvester's criterion on the leading minors (2x2 and 3x3 only)
+  std::vector<double> minors
+      = {m[0][0], m[0][0] * m[1][1] - m[0][1] * m[1][0]};
+  if (m.size() == 3)
+  {
+    minors.push_back(m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+                     - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+                     + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]));
+  }
+  if (!std::all_of(minors.begin(), minors.end(), [](double d) { return d > 0; }))
+    fail(source, path + " = " + fmt(json(m)) + ": not positive definite: " + why);
+}
+
+// A manufactured solution brings its own loads and Dirichlet data; "exact"
+// boundary values need one.
+void check_manufactured(const json& cfg, const std::string& source)
+{
+  const bool mms = cfg.contains("manufactured");
+  const std::string unused
+      = "not used with a manufactured solution (its loads come from the exact solution)";
+  if (mms)
+  {
+    for (const auto& [key, zero] : {std::pair{"body_force", json::array({0.0, 0.0})},
+                                    std::pair{"charge_density", json(0.0)}})
+    {
+      const json& v = cfg["loads"][key];
+      if (v != zero)
+        fail(source, std::string("loads.") + key + " = " + fmt(v) + ": " + unused);
+    }
+  }
+  for (const auto& [name, bc] : cfg["boundaries"].items())
+  {
+    for (const char* key : {"displacement", "potential"})
+    {
+      if (!bc.contains(key))
+        continue;
+      const std::string where
+          = "boundaries." + name + "." + key + " = " + fmt(bc[key]);
+      if (bc[key] == "exact" and !mms)
+        fail(source, where + ": needs the key manufactured (the exact solution "
+                             "to take it from)");
+      if (bc[key] != "exact" and mms)
+        fail(source, where + ": with a manufactured solution the Dirichlet data "
+                             "are the exact solution's: use \"exact\"");
+    }
+    for (const char* key : {"traction", "surface_charge"})
+      if (mms and bc.contains(key))
+        fail(source, "boundaries." + name + "." + key + ": " + unused);
+  }
+}
+
+// Rules that span keys (the same list as config.py's _check_semantics).
+void check_semantics(const json& cfg, const std::string& source)
+{
+  const json& mesh = cfg["mesh"];
+  const std::string type = mesh["type"];
+  const std::map<std::string, std::vector<std::string>> needed_by_type
+      = {{"unit_square", {"n"}}, {"gmsh", {"geometry", "size"}}, {"xdmf", {"path"}}};
+  const auto& needed = needed_by_type.at(type);
+  for (const auto& k : needed)
+    if (!mesh.contains(k))
+      fail(source, "mesh." + k + ": missing required key for mesh.type \""
+                       + type + "\"");
+  for (const auto& [k, _] : mesh.items())
+    if (k != "type" and k != "diagonal"
+        and std::find(needed.begin(), needed.end(), k) == needed.end())
+      fail(source, "mesh." + k + ": not used with mesh.type \"" + type + "\"");
+
+  const json& mat = cfg["material"];
+  check_spd(mat["permittivity"].get<Matrix>(), "material.permittivity", source,
+            "permittivity must be positive definite (2.14c); the paper's Table "
+            "2 prints -beta, use +8.3 eps0 and +8.8 eps0");
+  check_spd(mat["viscosity"].get<Matrix>(), "material.viscosity", source,
+            "viscosity must be positive definite (2.11c)");
+  check_symmetric(mat["elastic"].get<Matrix>(), "material.elastic", source);
+
+  for (const auto& [name, bc] : cfg["boundaries"].items())
+  {
+    const std::string where = "boundaries." + name;
+    const bool contact = bc.value("contact", false);
+    if (bc.contains("displacement") and (bc.contains("traction") or contact))
+      fail(source, where + ": a clamped boundary (displacement) cannot also "
+                           "carry traction or contact");
+    if (bc.contains("traction") and contact)
+      fail(source, where + ": traction and contact are exclusive");
+    if (bc.contains("potential") and bc.contains("surface_charge"))
+      fail(source, where + ": potential and surface_charge are exclusive");
+  }
+  check_manufactured(cfg, source);
+}
+
+bool is_index(const std::string& s, const json& node)
+{
+  return node.is_array() and !s.empty()
+         and std::all_of(s.begin(), s.end(), ::isdigit)
+         and std::stoul(s) < node.size();
+}
+
+void apply_override(json& cfg, const std::string& text,
+                    const std::string& source)
+{
+  const auto eq = text.find('=');
+  if (eq == std::string::npos)
+    fail(source, "--set '" + text + "': expected key.path=value");
+  std::string key = text.substr(0, eq);
+  key.erase(0, key.find_first_not_of(" \t"));
+  key.erase(key.find_last_not_of(" \t") + 1);
+  const std::string raw = text.substr(eq + 1);
+  json value = json::parse(raw, nullptr, false);
+  if (value.is_discarded())
+    value = raw; // a bare word such as mumps is a string
+
+  std::vector<std::string> parts;
+  std::stringstream ss(key);
+  for (std::string p; std::getline(ss, p, '.');)
+    parts.push_back(p);
+  json* node = &cfg;
+  std::string where;
+  for (std::size_t d = 0; d + 1 < parts.size(); ++d)
+  {
+    where = join(where, parts[d]);
+    if (is_index(parts[d], *node))
+      node = &(*node)[std::stoul(parts[d])];
+    else if (node->is_object())
+    {
+      if (!node->contains(parts[d]))
+        (*node)[parts[d]] = json::object();
+      node = &(*node)[parts[d]];
+    }
+    else
+      fail(source, "--set " + key + ": '" + where + "' is not an object");
+  }
+  const std::string& last = parts.back();
+  if (is_index(last, *node))
+    (*node)[std::stoul(last)] = value;
+  else if (node->is_object())
+    (*node)[last] = value;
+  else
+    fail(source, "--set " + key + ": cannot set '" + last + "' here");
+}
+} // namespace
+
+std::string closest_key(const std::string& key,
+                        const std::vector<std::string>& candidates)
+{
+  std::string best;
+  std::size_t best_d = 0;
+  for (const auto& c : candidates)
+  {
+    const std::size_t d = edit_distance(key, c);
+    if (best.empty() or d < best_d or (d == best_d and c < best))
+    {
+      best = c;
+      best_d = d;
+    }
+  }
+  if (!best.empty() and best_d <= std::max<std::size_t>(1, key.size() / 3))
+    return best;
+  return "";
+}
+
+json load_config(const std::string& path,
+                 const std::vector<std::string>& overrides)
+{
+  std::ifstream file(path);
+  if (!file)
+    fail(path, "cannot read config file: " + std::string(std::strerror(errno)));
+  const std::string text((std::istreambuf_iterator<char>(file)),
+                         std::istreambuf_iterator<char>());
+  json cfg;
+  try
+  {
+    cfg = json::parse(text);
+  }
+  catch (const json::parse_error& e)
+  {
+    // Line and column of the offending byte, as Python's json reports them
+    const std::size_t at = std::min<std::size_t>(e.byte ? e.byte - 1 : 0, text.size());
+    const std::size_t line = 1 + std::count(text.begin(), text.begin() + at, '\n');
+    const std::size_t bol = text.rfind('\n', at ? at - 1 : 0);
+    const std::size_t col = bol == std::string::npos ? at + 1 : at - bol;
+    std::string what = e.what();
+    what = what.substr(what.find(": ") + 2);
+    fail(path, "invalid JSON at line " + std::to_string(line) + " column "
+                   + std::to_string(col) + ": " + what);
+  }
+  return configure(cfg, overrides, path);
+}
+
+json configure(json cfg, const std::vector<std::string>& overrides,
+               const std::string& source)
+{
+  for (const auto& o : overrides)
+    apply_override(cfg, o, source);
+  cfg = check(cfg, json::parse(config_schema), "", source);
+  check_semantics(cfg, source);
+  return cfg;
+}
+
+RunSettings run_settings(const json& cfg)
+{
+  RunSettings s;
+  s.T = cfg["time"]["T"].get<double>();
+  s.steps = cfg["time"]["steps"].get<int>();
+  const json& newton = cfg["solver"]["newton"];
+  s.newton = {newton["rtol"].get<double>(), newton["atol"].get<double>(),
+              newton["max_iterations"].get<int>(), newton["max_step_halvings"].get<int>()};
+  s.reuse_factorisation = cfg["solver"]["reuse_factorisation"].get<bool>();
+  for (const auto& [key, value] : cfg["solver"]["petsc_options"].items())
+    s.petsc_options.emplace_back(key, value.is_string() ? value.get<std::string>()
+                                                        : value.dump()); // numbers, bools
+  for (const auto& p : cfg["probes"])
+  {
+    std::array<double, 3> x = {0.0, 0.0, 0.0};
+    for (std::size_t i = 0; i < p.size(); ++i)
+      x[i] = p[i].get<double>();
+    s.probes.push_back(x);
+  }
+  s.output = {cfg["output"]["xdmf"].get<bool>(), cfg["output"]["nodal"].get<std::string>()};
+  std::map<std::string, json> sorted;
+  for (const auto& [name, bc] : cfg["boundaries"].items())
+    sorted[name] = bc;
+  for (const auto& [name, bc] : sorted)
+  {
+    DirichletSettings d{name};
+    if (bc.contains("displacement"))
+    {
+      if (bc["displacement"] == "exact")
+        d.displacement_exact = true;
+      else
+        d.displacement = bc["displacement"].get<std::vector<double>>();
+    }
+    if (bc.contains("potential"))
+    {
+      if (bc["potential"] == "exact")
+        d.potential_exact = true;
+      else
+        d.potential = bc["potential"].get<double>();
+    }
+    if (d.displacement or d.displacement_exact or d.potential or d.potential_exact)
+      s.dirichlet.push_back(std::move(d));
+  }
+  return s;
+}
+
+void set_constants(const json& cfg, const std::map<std::string, int>& tag_of,
+                   const ConstantMap& constants, const std::string& source)
+{
+  auto set = [&constants](const std::string& name, const json& value)
+  {
+    auto& v = constants.at(name)->value;
+    std::size_t i = 0;
+    // row-major order of the nested lists
+    std::function<void(const json&)> walk = [&](const json& node)
+    {
+      if (node.is_array())
+        for (const auto& item : node)
+          walk(item);
+      else
+        v.at(i++) = node.get<double>();
+    };
+    walk(value);
+    if (i != v.size())
+      throw std::logic_error(name + ": " + std::to_string(i) + " values for a Constant of "
+                             + std::to_string(v.size()));
+  };
+  const std::size_t slots = constants.at("chi")->value.size();
+  if (tag_of.size() > slots)
+    throw ConfigError(source + ": mesh: " + std::to_string(tag_of.size())
+                      + " named boundaries, the forms support " + std::to_string(slots));
+  const json& mat = cfg["material"];
+  set("Bv", mat["elastic"]);
+  set("Av", mat["viscosity"]);
+  set("e", mat["piezoelectric"]);
+  set("beta", mat["permittivity"]);
+  set("c_p", cfg["contact"]["c_p"]);
+  set("g", cfg["contact"]["gap"]);
+  set("k", cfg["time"]["T"].get<double>() / cfg["time"]["steps"].get<double>());
+  set("f0", cfg["loads"]["body_force"]);
+  set("q0", cfg["loads"]["charge_density"]);
+  auto& fF = constants.at("fF")->value;
+  auto& qF = constants.at("qF")->value;
+  auto& chi = constants.at("chi")->value;
+  std::fill(fF.begin(), fF.end(), 0.0);
+  std::fill(qF.begin(), qF.end(), 0.0);
+  std::fill(chi.begin(), chi.end(), 0.0);
+  const std::size_t d = fF.size() / slots;
+  for (const auto& [name, bc] : cfg["boundaries"].items())
+  {
+    if (!tag_of.contains(name))
+    {
+      std::string have;
+      for (const auto& [m, _] : tag_of)
+        have += (have.empty() ? "" : ", ") + m;
+      throw ConfigError(source + ": boundaries." + name + ": the mesh has no boundary '" + name
+                        + "' (it has: " + have + ")");
+    }
+    const std::size_t s = tag_of.at(name) - 1;
+    if (bc.contains("traction"))
+      for (std::size_t i = 0; i < d; ++i)
+        fF.at(d * s + i) = bc["traction"][i].get<double>();
+    qF.at(s) = bc.value("surface_charge", 0.0);
+    chi.at(s) = bc.value("contact", false) ? 1.0 : 0.0;
+  }
+  if (cfg.contains("manufactured"))
+  {
+    constants.at("space_smooth")->value = {cfg["manufactured"]["space"] == "smooth" ? 1.0 : 0.0};
+    constants.at("time_smooth")->value = {cfg["manufactured"]["time"] == "smooth" ? 1.0 : 0.0};
+  }
+}
+} // namespace piezocontact

@@ -1,0 +1,50 @@
+// The JSON layer: a config file + `--set key.path=value` overrides, checked
+// against config/schema.json (embedded at build time) and the cross-key
+// rules, turned into typed settings and the values of the forms' Constants.
+// The one validator: the executable and the Python package both call it.
+#pragma once
+
+#include "model.h"
+#include "settings.h"
+
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace piezocontact
+{
+using json = nlohmann::ordered_json;
+
+/// A problem with the user's input; the message names file, key and value.
+struct ConfigError : std::runtime_error
+{
+  using std::runtime_error::runtime_error;
+};
+
+constexpr int exit_config_error = 2;
+constexpr int exit_run_error = 3;
+
+/// Read, apply overrides, validate; return the effective config with the
+/// schema's defaults filled in. Throws ConfigError.
+json load_config(const std::string& path,
+                 const std::vector<std::string>& overrides);
+
+/// Apply overrides to a config and validate it; errors name `source`
+json configure(json cfg, const std::vector<std::string>& overrides,
+               const std::string& source);
+
+/// The typed settings of a validated config (boundaries in sorted order)
+RunSettings run_settings(const json& cfg);
+
+/// Fill the Constants of the forms from a validated config: material, loads,
+/// contact, k = T/steps, per-boundary data in the slots of `tag_of`, and the
+/// switches of a manufactured solution if the forms have them. Throws
+/// ConfigError if the mesh has more named boundaries than the forms' slots.
+void set_constants(const json& cfg, const std::map<std::string, int>& tag_of,
+                   const ConstantMap& constants, const std::string& source);
+
+/// Nearest key to a misspelt one (empty if none is close); exposed for tests.
+std::string closest_key(const std::string& key,
+                        const std::vector<std::string>& candidates);
+} // namespace piezocontactcontact

@@ -1,0 +1,46 @@
+// Per-step quantities of interest, as demos/piezocontact/diagnostics.py
+// computes them: probe values, the contact resultant and the largest u.nu - g
+// on Gamma_C (the reactions come from the residual: nonlinear_system.h).
+#pragma once
+
+#include "config.h"
+#include "problem.h"
+
+#include <array>
+#include <optional>
+
+namespace piezocontact
+{
+/// Point evaluation of (u, phi); each point on the lowest rank holding it
+class Probes
+{
+public:
+  Probes(const Problem& problem, const std::vector<std::array<double, 3>>& points,
+         const std::string& source);
+  /// (u_x, u_y, phi) per probe, identical on all ranks
+  std::vector<std::array<double, 3>> evaluate(const Problem& problem) const;
+  std::vector<std::array<double, 3>> points;
+
+private:
+  std::vector<std::size_t> _mine;
+  std::vector<std::int32_t> _cells;
+};
+
+/// Vertices of the contact facets, their cells and outward unit normals
+class ContactGeometry
+{
+public:
+  explicit ContactGeometry(const Problem& problem);
+  /// Largest u.nu - g on Gamma_C; empty without a contact boundary
+  std::optional<double> max_normal_gap(const Problem& problem, double gap) const;
+
+private:
+  std::vector<double> _points;  // (n, 3)
+  std::vector<std::int32_t> _cells;
+  std::vector<std::array<double, 2>> _normals;
+};
+
+/// Resultant force of the foundation on the body (N/m)
+std::vector<double> contact_force(const Problem& problem);
+
+} // namespace piezocontact

@@ -1,0 +1,65 @@
+// From a config to a finished run, and the command line around it: the one
+// orchestration behind `piezo-contact` (ahead-of-time kernels) and
+// `python3 -m piezocontact` / piezocontact.solve (JIT kernels). The callers
+// differ only in the model factory, and the Python reference engine in the
+// time loop it plugs in.
+#pragma once
+
+#include "config.h"
+#include "model.h"
+#include "problem.h"
+#include "settings.h"
+#include "time_loop.h"
+
+#include <filesystem>
+#include <functional>
+#include <mpi.h>
+#include <string>
+#include <vector>
+
+namespace piezocontact
+{
+/// Builds the forms on a mesh; the Constants may be left at zero (the
+/// driver fills them from the config)
+using ModelFactory = std::function<Model(const NamedMesh& mesh, const json& cfg)>;
+
+/// A time loop: the library's `run` (time_loop.h) unless another is given
+using Engine = std::function<json(Problem& problem, const RunSettings& settings,
+                                  const std::filesystem::path& out_dir, json summary,
+                                  bool resume, bool progress)>;
+
+struct RunRequest
+{
+  json cfg;                         ///< validated (configure / load_config)
+  std::filesystem::path output;     ///< the output directory
+  std::string source = "config";    ///< names the config in messages
+  std::string solver = "cpp";       ///< recorded in the summary as "solver"
+  bool progress = true;             ///< one line per step on rank 0
+  const json* resume = nullptr;     ///< the summary to continue (resumable_summary)
+};
+
+/// Mesh, model, Problem, time loop; the run's summary. Throws ConfigError,
+/// NewtonFailure, OutputError, Interrupted.
+json run_config(const RunRequest& request, MPI_Comm comm, const ModelFactory& make_model,
+                const Engine& engine = nullptr, const StepObserver& observer = nullptr);
+
+/// The summary.json of DIR, to continue it, and the config to continue with
+/// (`--set time.T=... --set time.steps=...` extend a run at the same step).
+/// Only a run of the same `solver` can be resumed. Throws ConfigError.
+std::pair<json, json> resumable_summary(const std::filesystem::path& dir,
+                                        const std::vector<std::string>& overrides,
+                                        const std::string& solver);
+
+/// Create DIR and check that it can be written (rank 0; every rank throws
+/// the same ConfigError)
+void prepare_output(const std::filesystem::path& dir, const std::string& source, MPI_Comm comm);
+
+/// The command line, arguments without the program name:
+///   --config FILE --output DIR [--set KEY=VALUE ...] [--quiet]
+///   --output DIR --resume [--set time.T=.. --set time.steps=..] [--quiet]
+/// Prints one line per error; returns the exit code (0, 2 bad input,
+/// 3 Newton failure, 4 output error, 128 + signal).
+int command_line(const std::string& program, const std::vector<std::string>& args,
+                 MPI_Comm comm, const std::string& solver, const ModelFactory& make_model,
+                 const Engine& engine = nullptr);
+} // namespace piezocontact

@@ -1,0 +1,246 @@
+#include "mesh.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <dolfinx/fem/CoordinateElement.h>
+#include <dolfinx/io/XDMFFile.h>
+#include <dolfinx/mesh/generation.h>
+#include <dolfinx/mesh/utils.h>
+#include <fstream>
+#include <sstream>
+
+namespace piezocontact
+{
+using namespace dolfinx;
+namespace
+{
+// Built-in unit square: boundary name -> (axis, coordinate)
+const std::map<std::string, std::pair<int, double>> unit_square_sides
+    = {{"bottom", {1, 0.0}}, {"left", {0, 0.0}}, {"right", {0, 1.0}}, {"top", {1, 1.0}}};
+
+// What a mesh-generator child process inherits: not the MPI job's
+// variables, which would make its mpi4py join (and break) this job
+const char* child_env_keys[] = {"PATH", "HOME", "TMPDIR", "XDG_CACHE_HOME", "LANG"};
+
+std::string quote(const std::string& s)
+{
+  std::string q = "'";
+  for (char c : s)
+    q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+std::filesystem::path resolve(const std::string& value, const std::string& source)
+{
+  std::filesystem::path p(value);
+  return p.is_absolute() ? p
+                         : std::filesystem::absolute(source).parent_path() / p;
+}
+
+/// Throw the same error on every rank (rank 0 found it)
+void bcast_error(std::string& error, MPI_Comm comm)
+{
+  int len = error.size();
+  MPI_Bcast(&len, 1, MPI_INT, 0, comm);
+  error.resize(len);
+  MPI_Bcast(error.data(), len, MPI_CHAR, 0, comm);
+  if (!error.empty())
+    throw ConfigError(error);
+}
+
+mesh::DiagonalType diagonal_type(const std::string& name)
+{
+  const std::map<std::string, mesh::DiagonalType> types
+      = {{"right", mesh::DiagonalType::right},
+         {"left", mesh::DiagonalType::left},
+         {"crossed", mesh::DiagonalType::crossed},
+         {"left_right", mesh::DiagonalType::left_right},
+         {"right_left", mesh::DiagonalType::right_left}};
+  return types.at(name);
+}
+
+std::shared_ptr<mesh::MeshTags<std::int32_t>>
+make_tags(std::shared_ptr<mesh::Mesh> m,
+          std::vector<std::pair<std::int32_t, std::int32_t>> tagged)
+{
+  std::sort(tagged.begin(), tagged.end()); // MeshTags needs sorted indices
+  std::vector<std::int32_t> indices, values;
+  for (auto [f, v] : tagged)
+  {
+    indices.push_back(f);
+    values.push_back(v);
+  }
+  return std::make_shared<mesh::MeshTags<std::int32_t>>(m, 1, std::move(indices),
+                                                        std::move(values));
+}
+
+NamedMesh unit_square(const json& cfg, MPI_Comm comm)
+{
+  NamedMesh out;
+  const std::size_t n = cfg["mesh"]["n"].get<std::size_t>();
+  out.mesh = std::make_shared<mesh::Mesh>(mesh::create_rectangle(
+      comm, {{{0.0, 0.0}, {1.0, 1.0}}}, {n, n}, mesh::CellType::triangle,
+      mesh::GhostMode::shared_facet,
+      diagonal_type(cfg["mesh"]["diagonal"].get<std::string>())));
+  std::vector<std::pair<std::int32_t, std::int32_t>> tagged;
+  int slot = 0;
+  for (const auto& [name, side] : unit_square_sides) // sorted names
+  {
+    const auto [axis, c] = side;
+    const auto facets = mesh::locate_entities_boundary(
+        *out.mesh, 1,
+        [axis = axis, c = c](const xt::xtensor<double, 2>& X)
+        {
+          xt::xtensor<bool, 1> on(std::array<std::size_t, 1>{X.shape(1)});
+          for (std::size_t i = 0; i < X.shape(1); ++i) // as numpy.isclose
+            on(i) = std::abs(X(axis, i) - c) <= 1e-8 + 1e-5 * std::abs(c);
+          return on;
+        });
+    out.tag_of[name] = ++slot;
+    for (auto f : facets)
+      tagged.emplace_back(f, slot);
+  }
+  out.facet_tags = make_tags(out.mesh, std::move(tagged));
+  return out;
+}
+
+NamedMesh read_xdmf(const std::filesystem::path& file, MPI_Comm comm,
+                    const std::string& source)
+{
+  auto sidecar = file;
+  sidecar.replace_extension(".boundaries.json");
+  json names;
+  try
+  {
+    std::ifstream in(sidecar);
+    if (!in)
+      throw std::runtime_error(std::strerror(errno));
+    names = json::parse(in).at("boundaries");
+  }
+  catch (const std::exception& e)
+  {
+    throw ConfigError(source + ": mesh: cannot read the boundary names of "
+                      + file.string() + " from " + sidecar.string() + ": " + e.what());
+  }
+  NamedMesh out;
+  std::vector<std::int32_t> tag_indices, tag_values;
+  try
+  {
+    io::XDMFFile f(comm, file, "r");
+    out.mesh = std::make_shared<mesh::Mesh>(f.read_mesh(
+        fem::CoordinateElement(mesh::CellType::triangle, 1),
+        mesh::GhostMode::shared_facet, "mesh"));
+    out.mesh->topology_mutable().create_connectivity(1, 2);
+    const auto file_tags = f.read_meshtags(out.mesh, "facets");
+    tag_indices = file_tags.indices();
+    tag_values = file_tags.values();
+  }
+  catch (const std::exception& e) // every rank reads the same file
+  {
+    throw ConfigError(source + ": mesh: cannot read a triangle mesh \"mesh\" with facet "
+                      "tags \"facets\" from " + file.string() + ": " + e.what());
+  }
+  std::map<std::string, int> sorted;
+  for (const auto& [name, tag] : names.items())
+    sorted[name] = tag.get<int>();
+  std::map<int, int> slot_of_file_tag;
+  int slot = 0;
+  for (const auto& [name, tag] : sorted)
+  {
+    out.tag_of[name] = ++slot;
+    slot_of_file_tag[tag] = slot;
+  }
+  std::vector<std::pair<std::int32_t, std::int32_t>> tagged;
+  for (std::size_t i = 0; i < tag_indices.size(); ++i)
+    if (auto it = slot_of_file_tag.find(tag_values[i]); it != slot_of_file_tag.end())
+      tagged.emplace_back(tag_indices[i], it->second);
+  out.facet_tags = make_tags(out.mesh, std::move(tagged));
+  return out;
+}
+} // namespace
+
+std::optional<std::filesystem::path>
+prepare_mesh(const json& cfg, const std::string& source,
+             const std::filesystem::path& out_dir, MPI_Comm comm)
+{
+  const json& m = cfg["mesh"];
+  const std::string type = m["type"];
+  if (type == "unit_square")
+    return std::nullopt;
+  const std::string key = type == "gmsh" ? "geometry" : "path";
+  const auto path = resolve(m[key].get<std::string>(), source);
+  auto target = path;
+  int rank;
+  MPI_Comm_rank(comm, &rank);
+  std::string error;
+  if (rank == 0)
+  {
+    if (!std::filesystem::is_regular_file(path))
+      error = source + ": mesh." + key + " = " + m[key].dump() + ": no such file ("
+              + path.string() + ")";
+    else if (type == "gmsh")
+    {
+      target = std::filesystem::absolute(out_dir) / "mesh" / (path.stem().string() + ".xdmf");
+      const auto log = std::filesystem::absolute(out_dir) / "mesh" / "generate.log";
+      std::filesystem::create_directories(log.parent_path());
+      std::string cmd = "env -i";
+      for (const char* k : child_env_keys)
+        if (const char* v = std::getenv(k))
+          cmd += std::string(" ") + k + "=" + quote(v);
+      cmd += " /usr/bin/python3 " + quote(path.string()) + " --size "
+             + json(m["size"].get<double>()).dump() + " --output " + quote(target.string())
+             + " > " + quote(log.string()) + " 2>&1";
+      const int status = std::system(cmd.c_str());
+      if (status != 0)
+      {
+        std::ifstream in(log);
+        std::string line, last = "(no output)";
+        while (std::getline(in, line))
+          if (!line.empty())
+            last = line;
+        error = source + ": mesh.geometry = " + m["geometry"].dump()
+                + ": mesh generation failed (exit " + std::to_string(WEXITSTATUS(status))
+                + "): " + last;
+      }
+    }
+  }
+  bcast_error(error, comm);
+  std::string t = target.string();
+  int len = t.size();
+  MPI_Bcast(&len, 1, MPI_INT, 0, comm);
+  t.resize(len);
+  MPI_Bcast(t.data(), len, MPI_CHAR, 0, comm);
+  return std::filesystem::path(t);
+}
+
+NamedMesh build_mesh(const json& cfg, MPI_Comm comm,
+                     const std::optional<std::filesystem::path>& mesh_file,
+                     const std::string& source)
+{
+  return mesh_file ? read_xdmf(*mesh_file, comm, source) : unit_square(cfg, comm);
+}
+
+std::map<std::string, double> boundary_lengths(const NamedMesh& m, MPI_Comm comm)
+{
+  const std::int32_t n_owned = m.mesh->topology().index_map(1)->size_local();
+  const auto x = m.mesh->geometry().x();
+  const auto& idx = m.facet_tags->indices();
+  const auto& val = m.facet_tags->values();
+  std::map<std::string, double> out;
+  for (const auto& [name, tag] : m.tag_of)
+  {
+    std::vector<std::int32_t> facets;
+    for (std::size_t i = 0; i < idx.size(); ++i)
+      if (val[i] == tag and idx[i] < n_owned)
+        facets.push_back(idx[i]);
+    const auto g = mesh::entities_to_geometry(*m.mesh, 1, facets, false);
+    double local = 0;
+    for (std::size_t i = 0; i < facets.size(); ++i)
+      local += std::hypot(x[3 * g[2 * i + 1]] - x[3 * g[2 * i]],
+                          x[3 * g[2 * i + 1] + 1] - x[3 * g[2 * i] + 1]);
+    MPI_Allreduce(&local, &out[name], 1, MPI_DOUBLE, MPI_SUM, comm);
+  }
+  return out;
+}
+} // namespace piezocontact

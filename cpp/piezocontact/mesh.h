@@ -1,0 +1,32 @@
+// Meshes and named boundaries, as demos/piezocontact/meshing.py builds them:
+// the built-in unit square, a gmsh script of meshes/ run at mesh.size, or an
+// XDMF mesh with facet tags and a NAME.boundaries.json sidecar. The facet
+// tag of a named boundary becomes 1 + its index in sorted name order.
+#pragma once
+
+#include "config.h"
+#include "model.h"
+
+#include <dolfinx/mesh/Mesh.h>
+#include <dolfinx/mesh/MeshTags.h>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <optional>
+
+namespace piezocontact
+{
+
+/// The XDMF file to read (empty for the built-in square); for gmsh, run the
+/// geometry script on rank 0. Errors are thrown on every rank.
+std::optional<std::filesystem::path>
+prepare_mesh(const json& cfg, const std::string& source,
+             const std::filesystem::path& out_dir, MPI_Comm comm);
+
+NamedMesh build_mesh(const json& cfg, MPI_Comm comm,
+                     const std::optional<std::filesystem::path>& mesh_file,
+                     const std::string& source);
+
+/// Length of each named boundary: the sum of its owned facets' lengths
+std::map<std::string, double> boundary_lengths(const NamedMesh& m, MPI_Comm comm);
+} // namespace piezocontact

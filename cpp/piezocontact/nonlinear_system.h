@@ -1,0 +1,58 @@
+// Residual and Jacobian callbacks of the Newton solver, in the way of dolfinx
+// Python's NonlinearProblem.F/J (the 0.5.2 C++ hyperelasticity demo's F
+// callback omits the lifting and is no model), plus:
+//  * LU reuse: the bulk of J is linear, so J changes between iterates only
+//    if its contact part (form J_contact, contact facets only) or k does.
+//    That part is assembled and compared exactly with the last one; if equal,
+//    J is left untouched and PETSc keeps its factorisation. Any law p is
+//    safe: a smooth p changes J_contact at every iterate and J is rebuilt.
+//  * the reactions of clamped boundaries, read from the residual of the
+//    current iterate before the Dirichlet rows are overwritten;
+//  * timings and counts of every operation, for the benchmarks.
+#pragma once
+
+#include "fieldwise.h"
+#include "problem.h"
+
+#include <array>
+#include <petscksp.h>
+
+namespace piezocontact
+{
+struct OperationStats
+{
+  int count = 0;
+  double seconds = 0.0;
+};
+
+class NonlinearSystem
+{
+public:
+  NonlinearSystem(Problem& p, FieldwiseConvergence& monitor, KSP ksp, bool reuse_lu);
+  ~NonlinearSystem();
+
+  void F(const Vec x, Vec r);
+  void J(const Vec x, Mat M);
+
+  Vec b;
+  Mat A;
+  OperationStats residual, jacobian, contact_jacobian, factorisation;
+  int reused = 0; ///< Newton iterations that kept the last factorisation
+  /// reaction of each clamped boundary at the last residual evaluation
+  std::map<std::string, std::vector<double>> reactions;
+  /// The iterate (local dofs, with ghosts) and k at which the Jacobian in use
+  /// was assembled: a resumed run rebuilds the same matrix, LU and scaling
+  std::vector<double> x_assembled;
+  double k_assembled = 0.0;
+
+private:
+  void record_reactions(Vec r);
+  Problem& _p;
+  FieldwiseConvergence& _monitor;
+  KSP _ksp;
+  bool _reuse;
+  Mat _Jc = nullptr;
+  std::vector<double> _Jc_last; ///< this rank's values of the last J_contact
+  double _k_last = -1.0;
+};
+} // namespace piezocontact

@@ -1,0 +1,149 @@
+#include "problem.h"
+#include "config.h"
+
+#include <dolfinx/fem/assembler.h>
+#include <dolfinx/fem/utils.h>
+#include <cmath>
+
+namespace piezocontact
+{
+using namespace dolfinx;
+
+Problem::Problem(Model model_, const std::vector<DirichletSettings>& dirichlet,
+                 const std::string& source)
+    : model(std::move(model_)), comm(model.mesh.mesh->comm()), mesh(model.mesh.mesh),
+      W(model.W), x(model.x), x_prev(model.x_prev)
+{
+  // Collapsed sub-spaces and the W-dofs of each field
+  auto [Vu, map_u] = W->sub({0})->collapse();
+  V_u = std::make_shared<fem::FunctionSpace>(std::move(Vu));
+  u_dofs = std::move(map_u);
+  auto [Vphi, map_phi] = W->sub({1})->collapse();
+  V_phi = std::make_shared<fem::FunctionSpace>(std::move(Vphi));
+  phi_dofs = std::move(map_phi);
+  u = std::make_shared<fem::Function<double>>(V_u);
+  u->name = "u";
+  phi = std::make_shared<fem::Function<double>>(V_phi);
+  phi->name = "phi";
+  if (model.u_exact)
+  {
+    u_exact = std::make_shared<fem::Function<double>>(V_u);
+    u_exact->name = "u_exact";
+  }
+  if (model.phi_exact)
+  {
+    phi_exact = std::make_shared<fem::Function<double>>(V_phi);
+    phi_exact->name = "phi_exact";
+  }
+  set_time(0.0, model.constants.at("k")->value.at(0));
+  create_bcs(dirichlet, source);
+}
+
+void Problem::set_time(double t, double k)
+{
+  model.constants.at("k")->value = {k};
+  if (auto it = model.constants.find("t"); it != model.constants.end())
+    it->second->value = {t};
+  if (u_exact)
+    u_exact->interpolate(*model.u_exact);
+  if (phi_exact)
+    phi_exact->interpolate(*model.phi_exact);
+}
+
+std::map<std::string, double> Problem::errors() const
+{
+  std::map<std::string, double> out;
+  for (const auto& [name, form] : model.squared_errors)
+  {
+    double local = fem::assemble_scalar(*form), global = 0.0;
+    MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_SUM, comm);
+    out[name] = std::sqrt(global);
+  }
+  return out;
+}
+
+std::vector<std::int32_t> Problem::boundary_facets(const std::string& name) const
+{
+  const int tag = model.mesh.tag_of.at(name);
+  std::vector<std::int32_t> facets;
+  const auto& idx = model.mesh.facet_tags->indices();
+  const auto& val = model.mesh.facet_tags->values();
+  for (std::size_t i = 0; i < idx.size(); ++i)
+    if (val[i] == tag)
+      facets.push_back(idx[i]);
+  return facets;
+}
+
+// u and phi Dirichlet conditions on the collapsed sub-spaces (a Constant on a
+// vector sub-space of a mixed space throws in 0.5.2).
+void Problem::create_bcs(const std::vector<DirichletSettings>& dirichlet,
+                         const std::string& source)
+{
+  const int fdim = mesh->topology().dim() - 1;
+  for (const auto& bc : dirichlet)
+  {
+    if (!model.mesh.tag_of.contains(bc.boundary))
+    {
+      std::string have;
+      for (const auto& [m, _] : model.mesh.tag_of)
+        have += (have.empty() ? "" : ", ") + m;
+      throw ConfigError(source + ": boundaries." + bc.boundary + ": the mesh has no boundary '"
+                        + bc.boundary + "' (it has: " + have + ")");
+    }
+    const auto facets = boundary_facets(bc.boundary);
+    if (bc.displacement or bc.displacement_exact)
+    {
+      std::shared_ptr<fem::Function<double>> g = u_exact; // updated every step
+      if (!bc.displacement_exact)
+      {
+        g = std::make_shared<fem::Function<double>>(V_u);
+        auto values = g->x()->mutable_array();
+        const std::size_t d = bc.displacement->size();
+        for (std::size_t i = 0; i < values.size(); ++i)
+          values[i] = (*bc.displacement)[i % d];
+      }
+      if (!g)
+        throw ConfigError(source + ": boundaries." + bc.boundary
+                          + ".displacement: \"exact\" needs a manufactured solution");
+      auto dofs = fem::locate_dofs_topological({*W->sub({0}), *V_u}, fdim, facets);
+      bc_dofs.insert(bc_dofs.end(), dofs[0].begin(), dofs[0].end());
+      bcs.push_back(std::make_shared<fem::DirichletBC<double>>(g, std::move(dofs), W->sub({0})));
+      auto& comp = clamped_dofs[bc.boundary];
+      for (int i = 0; i < V_u->dofmap()->index_map_bs(); ++i)
+      {
+        const auto Vi = V_u->sub({i})->collapse().first;
+        // W->sub({0, i}) is not W.sub(0).sub(i) in 0.5.2: chain single levels
+        comp.push_back(
+            fem::locate_dofs_topological({*W->sub({0})->sub({i}), Vi}, fdim, facets)[0]);
+      }
+    }
+    if (bc.potential or bc.potential_exact)
+    {
+      std::shared_ptr<fem::Function<double>> g = phi_exact; // updated every step
+      if (!bc.potential_exact)
+      {
+        g = std::make_shared<fem::Function<double>>(V_phi);
+        std::fill(g->x()->mutable_array().begin(), g->x()->mutable_array().end(),
+                  *bc.potential);
+      }
+      if (!g)
+        throw ConfigError(source + ": boundaries." + bc.boundary
+                          + ".potential: \"exact\" needs a manufactured solution");
+      auto dofs = fem::locate_dofs_topological({*W->sub({1}), *V_phi}, fdim, facets);
+      bc_dofs.insert(bc_dofs.end(), dofs[0].begin(), dofs[0].end());
+      bcs.push_back(std::make_shared<fem::DirichletBC<double>>(g, std::move(dofs), W->sub({1})));
+    }
+  }
+}
+
+void Problem::update_fields()
+{
+  auto xa = x->x()->array();
+  auto ua = u->x()->mutable_array();
+  auto pa = phi->x()->mutable_array();
+  for (std::size_t i = 0; i < u_dofs.size(); ++i)
+    ua[i] = xa[u_dofs[i]];
+  for (std::size_t i = 0; i < phi_dofs.size(); ++i)
+    pa[i] = xa[phi_dofs[i]];
+}
+} // namespace piezocontact

@@ -1,0 +1,61 @@
+// The discrete problem around a Model: collapsed field spaces, the W-dofs of
+// each field, the Dirichlet conditions of the settings, and the exact fields
+// (if the model has them) at the current time. No term of the weak form is
+// written here: the model's forms are driven as they are.
+#pragma once
+
+#include "model.h"
+#include "settings.h"
+
+#include <array>
+#include <dolfinx/fem/DirichletBC.h>
+#include <map>
+#include <memory>
+#include <mpi.h>
+#include <string>
+#include <vector>
+
+namespace piezocontact
+{
+class Problem
+{
+public:
+  /// Throws ConfigError if a setting names a boundary the mesh lacks
+  Problem(Model model, const std::vector<DirichletSettings>& dirichlet,
+          const std::string& source);
+
+  /// Copy the mixed solution x into the collapsed u and phi
+  void update_fields();
+
+  /// Set the Constants "k" and (if the model has it) "t", and interpolate
+  /// the exact fields at t
+  void set_time(double t, double k);
+
+  /// sqrt of each squared error functional of the model, on every rank
+  std::map<std::string, double> errors() const;
+
+  /// Facets (local indices) of a named boundary
+  std::vector<std::int32_t> boundary_facets(const std::string& name) const;
+
+  /// Spatial dimension
+  int dim() const { return mesh->geometry().dim(); }
+
+  Model model;
+  MPI_Comm comm;
+  std::shared_ptr<dolfinx::mesh::Mesh> mesh;
+  std::shared_ptr<const dolfinx::fem::FunctionSpace> W;
+  std::shared_ptr<dolfinx::fem::FunctionSpace> V_u, V_phi;
+  std::vector<std::int32_t> u_dofs, phi_dofs; ///< W-dofs of each field
+  std::shared_ptr<dolfinx::fem::Function<double>> x, x_prev, u, phi;
+  /// Exact fields at the current time (null if the model has none)
+  std::shared_ptr<dolfinx::fem::Function<double>> u_exact, phi_exact;
+
+  std::vector<std::shared_ptr<const dolfinx::fem::DirichletBC<double>>> bcs;
+  std::vector<std::int32_t> bc_dofs; ///< W-dofs of every Dirichlet condition
+  /// clamped boundary -> W-dofs of each of its u components
+  std::map<std::string, std::vector<std::vector<std::int32_t>>> clamped_dofs;
+
+private:
+  void create_bcs(const std::vector<DirichletSettings>& dirichlet, const std::string& source);
+};
+} // namespace piezocontact

@@ -1,0 +1,56 @@
+"""piezocontact.solve: a run from a Python script, on the C++ time loop (JIT
+kernels) or on the independent reference engine."""
+
+import json
+from pathlib import Path
+
+from mpi4py import MPI
+
+from . import cpp, model
+
+ENGINES = {"cpp": "cpp-jit", "reference": "reference"}
+
+
+def load(config, overrides=()):
+    """(validated config dict, source) of a config file path or a dict;
+    raises ConfigError (the C++ validator's message)."""
+    if isinstance(config, (str, Path)):
+        return json.loads(cpp.load_config(str(config), list(overrides))), str(config)
+    source = "config"  # a dict: relative paths in it are taken from the working directory
+    return json.loads(cpp.configure(json.dumps(config), list(overrides), source)), source
+
+
+def engine_loop(engine, keep):
+    """The time loop the driver runs: None for the C++ one."""
+    if engine not in ENGINES:
+        raise ValueError(f"engine = {engine!r}: expected one of {', '.join(ENGINES)}")
+    if engine == "cpp":
+        return None
+    from . import reference
+    return reference.engine(keep)
+
+
+def solve(config, output, engine="cpp", extra_residual=None, contact_law=None, overrides=(),
+          progress=True, comm=MPI.COMM_WORLD, observer=None):
+    """Run the model of `config` (a path or a dict) and write `output`.
+
+    engine: "cpp" (the C++ time loop on JIT-compiled forms) or "reference"
+      (stock dolfinx/PETSc Newton, its own loop: the independent check).
+    extra_residual(u, phi, w, psi, data): a UFL form added to the residual;
+      the Jacobian follows by differentiation.
+    contact_law(r, c_p): replaces the normal compliance law p.
+    observer(step, record): called after each accepted step (cpp engine).
+    Returns the summary (the dict written to output/summary.json). Raises
+    ConfigError, NewtonFailure, OutputError, Interrupted (piezocontact.cpp)."""
+    cfg, source = load(config, overrides)
+    keep = []
+    loop = engine_loop(engine, keep)
+    cpp.prepare_output(str(output), source, comm)
+    on_step = None
+    if observer is not None:
+        def on_step(n, record):
+            observer(n, json.loads(record))
+    summary = cpp.run_config(json.dumps(cfg), str(output), source, ENGINES[engine], progress,
+                             None, comm, model.factory(extra_residual, contact_law, keep),
+                             loop, on_step)
+    return json.loads(summary)

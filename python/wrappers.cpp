@@ -1,0 +1,215 @@
+// piezocontact.cpp: Python bindings of libpiezocontact. dolfinx objects
+// cross as dolfinx's own pybind11 types (its Python module registers them);
+// JSON crosses as text (the Python package loads and dumps it).
+#include <caster_mpi.h>
+#include <caster_petsc.h>
+#include <dolfinx/fem/DirichletBC.h>
+#include <piezocontact/config.h>
+#include <piezocontact/driver.h>
+#include <piezocontact/output.h>
+#include <pybind11/functional.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+namespace py = pybind11;
+using namespace piezocontact;
+using dolfinx_wrappers::MPICommWrapper;
+
+namespace
+{
+/// A model factory written in Python: (NamedMesh, config text) -> Model
+using PyModelFactory = std::function<Model(const NamedMesh&, const std::string&)>;
+/// A time loop written in Python: (Problem, settings, output, summary text,
+/// resume, progress) -> summary text
+using PyEngine = std::function<std::string(Problem*, const RunSettings&, const std::string&,
+                                           const std::string&, bool, bool)>;
+
+ModelFactory factory(const PyModelFactory& f)
+{
+  return [f](const NamedMesh& mesh, const json& cfg) { return f(mesh, cfg.dump()); };
+}
+
+/// The Python classes of the library's exceptions (set at import)
+py::handle config_error, newton_failure, output_error, interrupted;
+
+/// An engine written in Python raises the library's exceptions by their
+/// Python classes; the driver gets them back as C++ exceptions
+/// (Interrupted(signum, steps, t) from its arguments)
+[[noreturn]] void rethrow(py::error_already_set& e)
+{
+  const std::string what = py::str(e.value());
+  if (e.matches(config_error))
+    throw ConfigError(what);
+  if (e.matches(newton_failure))
+    throw NewtonFailure(what);
+  if (e.matches(output_error))
+    throw OutputError(what);
+  if (e.matches(interrupted))
+  {
+    const py::tuple args = e.value().attr("args");
+    throw Interrupted(args[0].cast<int>(), args[1].cast<int>(), args[2].cast<double>());
+  }
+  throw;
+}
+
+Engine engine(const std::optional<PyEngine>& e)
+{
+  if (!e)
+    return nullptr;
+  return [e](Problem& problem, const RunSettings& settings, const std::filesystem::path& out,
+             json summary, bool resume, bool progress)
+  {
+    try
+    {
+      return json::parse((*e)(&problem, settings, out.string(), summary.dump(), resume, progress));
+    }
+    catch (py::error_already_set& err)
+    {
+      rethrow(err);
+    }
+  };
+}
+
+void declare_model(py::module& m)
+{
+  py::class_<NamedMesh>(m, "NamedMesh", "A mesh with facet tags of named boundaries")
+      .def_readonly("mesh", &NamedMesh::mesh)
+      .def_readonly("facet_tags", &NamedMesh::facet_tags)
+      .def_readonly("tag_of", &NamedMesh::tag_of);
+
+  py::class_<Model>(m, "Model", "The dolfinx objects of a run (model.h)")
+      .def(py::init<>())
+      .def_readwrite("mesh", &Model::mesh)
+      .def_readwrite("W", &Model::W)
+      .def_readwrite("x", &Model::x)
+      .def_readwrite("x_prev", &Model::x_prev)
+      .def_readwrite("constants", &Model::constants)
+      .def_readwrite("F", &Model::F)
+      .def_readwrite("J", &Model::J)
+      .def_readwrite("J_contact", &Model::J_contact)
+      .def_readwrite("contact_force", &Model::contact_force)
+      .def_readwrite("electric_displacement", &Model::electric_displacement)
+      .def_readwrite("stress", &Model::stress)
+      .def_readwrite("u_exact", &Model::u_exact)
+      .def_readwrite("phi_exact", &Model::phi_exact)
+      .def_readwrite("squared_errors", &Model::squared_errors);
+}
+
+void declare_settings(py::module& m)
+{
+  py::class_<NewtonSettings>(m, "NewtonSettings")
+      .def_readonly("rtol", &NewtonSettings::rtol)
+      .def_readonly("atol", &NewtonSettings::atol)
+      .def_readonly("max_iterations", &NewtonSettings::max_iterations)
+      .def_readonly("max_step_halvings", &NewtonSettings::max_step_halvings);
+  py::class_<OutputSettings>(m, "OutputSettings")
+      .def_readonly("xdmf", &OutputSettings::xdmf)
+      .def_readonly("nodal", &OutputSettings::nodal);
+  py::class_<RunSettings>(m, "RunSettings")
+      .def_readonly("T", &RunSettings::T)
+      .def_readonly("steps", &RunSettings::steps)
+      .def_readonly("newton", &RunSettings::newton)
+      .def_readonly("reuse_factorisation", &RunSettings::reuse_factorisation)
+      .def_readonly("petsc_options", &RunSettings::petsc_options)
+      .def_readonly("probes", &RunSettings::probes)
+      .def_readonly("output", &RunSettings::output);
+}
+
+void declare_problem(py::module& m)
+{
+  py::class_<Problem>(m, "Problem", "A Model with its Dirichlet conditions (problem.h)")
+      .def_property_readonly("bcs",
+                             [](const Problem& p)
+                             {
+                               std::vector<std::shared_ptr<const dolfinx::fem::DirichletBC<double>>>
+                                   out(p.bcs.begin(), p.bcs.end());
+                               return out;
+                             })
+      .def_readonly("u_dofs", &Problem::u_dofs)
+      .def_readonly("phi_dofs", &Problem::phi_dofs)
+      .def_readonly("bc_dofs", &Problem::bc_dofs)
+      .def_readonly("clamped_dofs", &Problem::clamped_dofs)
+      .def("set_time", &Problem::set_time, py::arg("t"), py::arg("k"))
+      .def("update_fields", &Problem::update_fields)
+      .def("errors", &Problem::errors);
+}
+} // namespace
+
+PYBIND11_MODULE(cpp, m)
+{
+  m.doc() = "libpiezocontact: the C++ core of piezocontact";
+  config_error = py::register_exception<ConfigError>(m, "ConfigError", PyExc_ValueError);
+  newton_failure = py::register_exception<NewtonFailure>(m, "NewtonFailure", PyExc_RuntimeError);
+  output_error = py::register_exception<OutputError>(m, "OutputError", PyExc_OSError);
+  interrupted = py::register_exception<Interrupted>(m, "Interrupted", PyExc_KeyboardInterrupt);
+  m.attr("exit_config_error") = exit_config_error;
+  m.attr("exit_run_error") = exit_run_error;
+  m.attr("exit_output_error") = exit_output_error;
+
+  declare_model(m);
+  declare_settings(m);
+  declare_problem(m);
+
+  m.def(
+      "load_config",
+      [](const std::string& path, const std::vector<std::string>& overrides)
+      { return load_config(path, overrides).dump(); },
+      py::arg("path"), py::arg("overrides"), "Read, override and validate a config file");
+  m.def(
+      "configure",
+      [](const std::string& cfg, const std::vector<std::string>& overrides,
+         const std::string& source)
+      { return configure(json::parse(cfg), overrides, source).dump(); },
+      py::arg("cfg"), py::arg("overrides"), py::arg("source"),
+      "Override and validate a config given as JSON text");
+  m.def(
+      "resumable_summary",
+      [](const std::string& dir, const std::vector<std::string>& overrides,
+         const std::string& solver)
+      {
+        const auto [summary, cfg] = resumable_summary(dir, overrides, solver);
+        return std::pair(summary.dump(), cfg.dump());
+      },
+      py::arg("dir"), py::arg("overrides"), py::arg("solver"));
+  m.def(
+      "prepare_output",
+      [](const std::string& dir, const std::string& source, MPICommWrapper comm)
+      { prepare_output(dir, source, comm.get()); },
+      py::arg("dir"), py::arg("source"), py::arg("comm"));
+  m.def(
+      "run_config",
+      [](const std::string& cfg, const std::string& output, const std::string& source,
+         const std::string& solver, bool progress, std::optional<std::string> resume,
+         MPICommWrapper comm, const PyModelFactory& make_model,
+         const std::optional<PyEngine>& loop,
+         const std::optional<std::function<void(int, const std::string&)>>& observer)
+      {
+        const json summary = resume ? json::parse(*resume) : json();
+        RunRequest request{json::parse(cfg), output, source, solver, progress,
+                           resume ? &summary : nullptr};
+        StepObserver on_step = nullptr;
+        if (observer)
+          on_step = [&observer](int n, const json& step) { (*observer)(n, step.dump()); };
+        const InterruptScope interrupts;
+        return run_config(request, comm.get(), factory(make_model), engine(loop), on_step)
+            .dump();
+      },
+      py::arg("cfg"), py::arg("output"), py::arg("source"), py::arg("solver"),
+      py::arg("progress"), py::arg("resume"), py::arg("comm"), py::arg("make_model"),
+      py::arg("engine") = py::none(), py::arg("observer") = py::none(),
+      "A run from a validated config (driver.h); the summary as JSON text");
+  m.def(
+      "command_line",
+      [](const std::string& program, const std::vector<std::string>& args, MPICommWrapper comm,
+         const std::string& solver, const PyModelFactory& make_model,
+         const std::optional<PyEngine>& loop)
+      {
+        silence_hdf5_errors();
+        return command_line(program, args, comm.get(), solver, factory(make_model),
+                            engine(loop));
+      },
+      py::arg("program"), py::arg("args"), py::arg("comm"), py::arg("solver"),
+      py::arg("make_model"), py::arg("engine") = py::none(),
+      "The command line of piezo-contact; returns the exit code");
+}
