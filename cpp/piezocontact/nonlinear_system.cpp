@@ -95,17 +95,7 @@ void NonlinearSystem::record_reactions(Vec r)
   VecGetArrayRead(r, &a);
   PetscInt n;
   VecGetLocalSize(r, &n);
-  for (const auto& [name, comps] : _p.clamped_dofs)
-  {
-    std::vector<double> local(comps.size(), 0.0);
-    for (std::size_t i = 0; i < comps.size(); ++i)
-      for (auto d : comps[i])
-        if (d < n)
-          local[i] += a[d];
-    reactions[name].resize(comps.size());
-    MPI_Allreduce(local.data(), reactions[name].data(), local.size(), MPI_DOUBLE, MPI_SUM,
-                  _p.comm);
-  }
+  reactions = _p.reactions(std::span<const double>(a, n));
   VecRestoreArrayRead(r, &a);
 }
 

@@ -3,6 +3,7 @@
 
 #include <dolfinx/fem/assembler.h>
 #include <dolfinx/fem/utils.h>
+#include <dolfinx/la/Vector.h>
 #include <cmath>
 
 namespace piezocontact
@@ -60,6 +61,36 @@ std::map<std::string, double> Problem::errors() const
     out[name] = std::sqrt(global);
   }
   return out;
+}
+
+std::map<std::string, std::vector<double>>
+Problem::reactions(std::span<const double> r) const
+{
+  std::map<std::string, std::vector<double>> out;
+  for (const auto& [name, comps] : clamped_dofs)
+  {
+    std::vector<double> local(comps.size(), 0.0);
+    for (std::size_t i = 0; i < comps.size(); ++i)
+      for (auto d : comps[i])
+        if (d < std::int32_t(r.size()))
+          local[i] += r[d];
+    auto& global = out[name];
+    global.resize(local.size());
+    MPI_Allreduce(local.data(), global.data(), local.size(), MPI_DOUBLE, MPI_SUM, comm);
+  }
+  return out;
+}
+
+// At a Dirichlet dof the lifting adds A(g - x), zero once x holds the
+// boundary values: the assembled F alone is the unconstrained residual
+std::map<std::string, std::vector<double>> Problem::reactions() const
+{
+  const auto& imap = *W->dofmap()->index_map;
+  const int bs = W->dofmap()->index_map_bs();
+  la::Vector<double> r(W->dofmap()->index_map, bs);
+  fem::assemble_vector(r.mutable_array(), *model.F);
+  r.scatter_rev(std::plus<double>());
+  return reactions(r.array().subspan(0, imap.size_local() * bs));
 }
 
 std::vector<std::int32_t> Problem::boundary_facets(const std::string& name) const

@@ -11,6 +11,7 @@
 #include <dolfinx/fem/DirichletBC.h>
 #include <map>
 #include <memory>
+#include <span>
 #include <mpi.h>
 #include <string>
 #include <vector>
@@ -33,6 +34,14 @@ public:
 
   /// sqrt of each squared error functional of the model, on every rank
   std::map<std::string, double> errors() const;
+
+  /// Reaction of each clamped boundary, per u component: the sums of a
+  /// residual over its dofs (owned entries of `r`, before the Dirichlet rows
+  /// are overwritten), on every rank
+  std::map<std::string, std::vector<double>> reactions(std::span<const double> r) const;
+
+  /// The reactions at the current x, from a residual assembled for them
+  std::map<std::string, std::vector<double>> reactions() const;
 
   /// Facets (local indices) of a named boundary
   std::vector<std::int32_t> boundary_facets(const std::string& name) const;

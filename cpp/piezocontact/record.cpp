@@ -1,0 +1,312 @@
+#include "record.h"
+
+#include <cmath>
+#include <cstdio>
+
+namespace piezocontact
+{
+namespace
+{
+using Clock = std::chrono::steady_clock;
+
+int rank_of(MPI_Comm comm)
+{
+  int rank;
+  MPI_Comm_rank(comm, &rank);
+  return rank;
+}
+
+/// Run `action`, adding its wall time to `s`
+template <typename S, typename F>
+void timed(S& s, F&& action)
+{
+  const auto t0 = Clock::now();
+  action();
+  s.seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+  ++s.count;
+}
+
+json fields_json(const std::map<std::string, FieldNorms>& norms, double FieldNorms::*member)
+{
+  json out = json::object();
+  for (const char* f : {"u", "phi"})
+  {
+    if (!norms.contains(f))
+    {
+      out[f] = nullptr;
+      continue;
+    }
+    const double v = norms.at(f).*member;
+    out[f] = std::isnan(v) ? json(nullptr) : json(v); // undefined while x_f = 0
+  }
+  return out;
+}
+
+std::string numbered(const char* format, int n)
+{
+  char buf[64];
+  std::snprintf(buf, sizeof(buf), format, n);
+  return buf;
+}
+
+void print_progress(const std::string& label, int n, const json& step)
+{
+  const json& r = step["relative_residuals"];
+  auto e = [](const json& v, int digits, const char* missing)
+  {
+    if (v.is_null())
+      return std::string(missing);
+    char buf[32];
+    std::snprintf(buf, sizeof(buf), "%.*e", digits, v.get<double>());
+    return std::string(buf);
+  };
+  std::printf("[%s] step %4d  t = %.4g  newton %d  rel. residual u %s phi %s"
+              "  max(u.nu - g) = %s\n",
+              label.c_str(), n, step["t"].get<double>(), step["newton_iterations"].get<int>(),
+              e(r["u"], 1, "undefined").c_str(), e(r["phi"], 1, "undefined").c_str(),
+              e(step["max_penetration"], 3, "n/a").c_str());
+  std::fflush(stdout);
+}
+} // namespace
+
+Record::Record(Problem& problem, const RunSettings& settings, std::filesystem::path dir,
+               json summary, bool resume, bool progress, StepObserver observer)
+    : _problem(problem), _dir(std::move(dir)), _progress(progress),
+      _observer(std::move(observer)), _label(summary.value("solver", "cpp")),
+      _probes(problem, settings.probes, summary.value("config_file", "config")),
+      _contact(problem), _state_file(problem)
+{
+  int size;
+  MPI_Comm_size(problem.comm, &size);
+  if (resume)
+  {
+    _summary = std::move(summary);
+    _state = StepState::from_json(_summary["checkpoint"]);
+    // What came after the checkpoint is done again
+    auto& steps = _summary["steps"];
+    steps.erase(steps.begin() + _state.step, steps.end());
+    auto& events = _summary["events"];
+    events.erase(events.begin() + _state.events, events.end());
+    _summary.erase("error");
+    _summary.erase("signal");
+    if (!_summary.contains("resumed"))
+      _summary["resumed"] = json::array();
+    _summary["resumed"].push_back({{"step", _state.step}, {"t", _state.t}, {"mpi_size", size}});
+    _summary["mpi_size"] = size;
+  }
+  else
+  {
+    const auto& imap = *problem.W->dofmap()->index_map;
+    const int bs = problem.W->dofmap()->index_map_bs();
+    _summary = {{"solver", _label}, {"dofs", imap.size_global() * bs}, {"mpi_size", size}};
+    for (auto& [key, value] : summary.items())
+      _summary[key] = value;
+    _summary["steps"] = json::array();
+    _summary["events"] = json::array();
+    _summary["timing"] = json::object();
+  }
+  _summary["status"] = "running";
+  try
+  {
+    _writer.emplace(problem, settings.output, _dir, _state.step);
+  }
+  catch (const OutputError& e)
+  {
+    fail_on_output(e);
+  }
+}
+
+Record::~Record() = default;
+
+void Record::read_states(const States& states) const
+{
+  try
+  {
+    _state_file.read(_dir / _state.file, states);
+  }
+  catch (const std::runtime_error& e)
+  {
+    throw ConfigError(std::string("cannot resume: ") + e.what());
+  }
+}
+
+void Record::write_summary()
+{
+  timed(_summaries,
+        [&]
+        {
+          collectively(_problem.comm, rank_of(_problem.comm) == 0,
+                       [&] { write_json_atomic(_dir / "summary.json", _summary); });
+        });
+}
+
+// A write error ends the run; the summary says so if it can still be written
+void Record::fail_on_output(const OutputError& e)
+{
+  _summary["status"] = "failed";
+  _summary["error"] = e.what();
+  try
+  {
+    write_summary();
+  }
+  catch (const OutputError&)
+  {
+  }
+  throw e;
+}
+
+StepState Record::write_checkpoint(StepState s, const StateViews& states)
+{
+  s.events = _summary["events"].size();
+  s.file = "checkpoint/" + numbered("state_%06d.npy", s.step);
+  if (rank_of(_problem.comm) == 0)
+    std::filesystem::create_directories(_dir / "checkpoint");
+  timed(_checkpoints, [&] { _state_file.write(_dir / s.file, states); });
+  return s;
+}
+
+void Record::begin(const StepState& state, const StateViews& states)
+{
+  try
+  {
+    if (_state.file.empty())
+      _state = write_checkpoint(state, states);
+    _summary["checkpoint"] = _state.to_json();
+    write_summary();
+  }
+  catch (const OutputError& e)
+  {
+    fail_on_output(e);
+  }
+}
+
+json Record::accept(StepState state, const SolveReport& report, const StateViews& states,
+                    bool final, const json& timing)
+{
+  Problem& problem = _problem;
+  problem.update_fields();
+  json step = json::object();
+  step["t"] = report.t;
+  step["newton_iterations"] = report.newton_iterations;
+  step["factorisations"] = report.factorisations;
+  const std::map<std::string, FieldNorms> none;
+  const auto& last = report.history.empty() ? none : report.history.back();
+  step["residual_norms"] = fields_json(last, &FieldNorms::residual);
+  step["relative_residuals"] = fields_json(last, &FieldNorms::relative);
+  step["residual_history"] = json::array();
+  for (const auto& h : report.history)
+    step["residual_history"].push_back(fields_json(h, &FieldNorms::relative));
+  step["probes"] = json::array();
+  const auto values = _probes.evaluate(problem);
+  for (std::size_t i = 0; i < values.size(); ++i)
+  {
+    step["probes"].push_back({{"point", {_probes.points[i][0], _probes.points[i][1]}},
+                              {"u", {values[i][0], values[i][1]}},
+                              {"phi", values[i][2]}});
+  }
+  step["contact_force"] = contact_force(problem);
+  const auto gap = _contact.max_normal_gap(problem, problem.model.constants.at("g")->value[0]);
+  step["max_penetration"] = gap ? json(*gap) : json(nullptr);
+  step["reactions"] = json::object();
+  for (const auto& [name, r] : report.reactions ? *report.reactions : problem.reactions())
+    step["reactions"][name] = r;
+  step["krylov_iterations"] = report.krylov_iterations;
+  step["k"] = report.k;
+  if (!problem.model.squared_errors.empty())
+    step["errors"] = problem.errors();
+
+  // Step files, then its checkpoint, then the summary that points to both:
+  // a kill at any instant leaves a summary whose every step is on disk
+  const StepState previous = _state;
+  try
+  {
+    timed(_step_files, [&] { _writer->write_step(state.step, report.t, final); });
+    _state = write_checkpoint(state, states);
+    _summary["steps"].push_back(step);
+    _summary["checkpoint"] = _state.to_json();
+    _summary["status"] = final ? "completed" : "running";
+    _summary["timing"] = timing;
+    _summary["timing"]["output_s"]
+        = _step_files.seconds + _checkpoints.seconds + _summaries.seconds;
+    _summary["timing"]["output"] = output_timing();
+    write_summary();
+  }
+  catch (const OutputError& e)
+  {
+    if (_summary["steps"].size() > std::size_t(previous.step))
+      _summary["steps"].erase(_summary["steps"].end() - 1);
+    _summary["checkpoint"] = previous.to_json();
+    if (rank_of(problem.comm) == 0 and _state.file != previous.file)
+    {
+      // unreferenced: its space may let the summary say what went wrong
+      std::error_code ec;
+      std::filesystem::remove(_dir / _state.file, ec);
+    }
+    _state = previous;
+    fail_on_output(e);
+  }
+  if (rank_of(problem.comm) == 0)
+  {
+    std::error_code ec;
+    std::filesystem::remove(_dir / previous.file, ec);
+    if (_progress)
+      print_progress(_label, state.step, step);
+  }
+  if (_observer)
+    _observer(state.step, step);
+  return step;
+}
+
+void Record::reject(const SolveReport& report, const std::string& action)
+{
+  const std::map<std::string, FieldNorms> none;
+  const auto& last = report.history.empty() ? none : report.history.back();
+  _summary["events"].push_back({{"t", report.t},
+                                {"k", report.k},
+                                {"newton_iterations", report.newton_iterations},
+                                {"relative_residuals", fields_json(last, &FieldNorms::relative)},
+                                {"action", action}});
+}
+
+std::size_t Record::events() const { return _summary["events"].size(); }
+
+void Record::fail(const std::string& error)
+{
+  _summary["status"] = "failed";
+  _summary["error"] = error;
+  try
+  {
+    write_summary();
+  }
+  catch (const OutputError&)
+  {
+  }
+  throw NewtonFailure(error);
+}
+
+void Record::interrupt(int signum, const json& timing)
+{
+  _summary["status"] = "interrupted";
+  _summary["signal"] = signal_name(signum);
+  _summary["timing"] = timing;
+  _summary["timing"]["output_s"] = _step_files.seconds + _checkpoints.seconds + _summaries.seconds;
+  _summary["timing"]["output"] = output_timing();
+  try
+  {
+    write_summary();
+  }
+  catch (const OutputError& e)
+  {
+    fail_on_output(e);
+  }
+  throw Interrupted(signum, _state.step, _state.t);
+}
+
+json Record::output_timing() const
+{
+  auto stats = [](const Stats& s) { return json{{"count", s.count}, {"seconds", s.seconds}}; };
+  return {{"step_files", stats(_step_files)},
+          {"checkpoint", stats(_checkpoints)},
+          {"summary", stats(_summaries)}};
+}
+} // namespace piezocontact
