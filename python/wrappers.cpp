@@ -7,7 +7,9 @@
 #include <piezocontact/config.h>
 #include <piezocontact/driver.h>
 #include <piezocontact/output.h>
+#include <piezocontact/record.h>
 #include <pybind11/functional.h>
+#include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
@@ -134,6 +136,89 @@ void declare_problem(py::module& m)
       .def("update_fields", &Problem::update_fields)
       .def("errors", &Problem::errors);
 }
+using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+std::span<const double> view(const Array& a) { return {a.data(), std::size_t(a.size())}; }
+
+/// Interrupted crosses to Python with (signum, steps, t), so that an engine
+/// written in Python can let it through to the driver
+template <typename F>
+auto raising_interrupted(F&& f)
+{
+  try
+  {
+    return f();
+  }
+  catch (const Interrupted& e)
+  {
+    PyErr_SetObject(interrupted.ptr(),
+                    py::make_tuple(e.signum, e.steps, e.t).ptr());
+    throw py::error_already_set();
+  }
+}
+
+void declare_record(py::module& m)
+{
+  py::class_<FieldNorms>(m, "FieldNorms", "Norms of one field's residual")
+      .def(py::init([](double residual, double scaled, double relative)
+                    { return FieldNorms{residual, scaled, relative}; }),
+           py::arg("residual"), py::arg("scaled_residual"), py::arg("relative"))
+      .def_readonly("residual", &FieldNorms::residual)
+      .def_readonly("scaled_residual", &FieldNorms::scaled_residual)
+      .def_readonly("relative", &FieldNorms::relative);
+  py::class_<StepState>(m, "StepState", "The step control after an accepted step")
+      .def(py::init(
+               [](int step, int nominal, double t, double k, double k_last, double k_J)
+               { return StepState{step, nominal, t, k, k_last, k_J}; }),
+           py::arg("step"), py::arg("nominal"), py::arg("t"), py::arg("k"), py::arg("k_last"),
+           py::arg("k_J"));
+  py::class_<SolveReport>(m, "SolveReport", "How an accepted step was solved")
+      .def(py::init<>())
+      .def_readwrite("t", &SolveReport::t)
+      .def_readwrite("k", &SolveReport::k)
+      .def_readwrite("newton_iterations", &SolveReport::newton_iterations)
+      .def_readwrite("factorisations", &SolveReport::factorisations)
+      .def_readwrite("krylov_iterations", &SolveReport::krylov_iterations)
+      .def_readwrite("history", &SolveReport::history);
+  py::class_<Record>(m, "Record", "The outputs and summary of a run (record.h)")
+      .def(py::init(
+               [](Problem* problem, const RunSettings& settings, const std::string& dir,
+                  const std::string& summary, bool progress,
+                  const std::optional<std::function<void(int, const std::string&)>>& observer)
+               {
+                 StepObserver on_step = nullptr;
+                 if (observer)
+                   on_step = [observer](int n, const json& step) { (*observer)(n, step.dump()); };
+                 return std::make_unique<Record>(*problem, settings, dir, json::parse(summary),
+                                                 false, progress, on_step);
+               }),
+           py::arg("problem"), py::arg("settings"), py::arg("dir"), py::arg("summary"),
+           py::arg("progress"), py::arg("observer") = py::none(), py::keep_alive<1, 2>())
+      .def(
+          "begin",
+          [](Record& r, const StepState& s, const Array& x_n, const Array& x_prev,
+             const Array& x_J) { r.begin(s, {view(x_n), view(x_prev), view(x_J)}); },
+          "Write the step-0 checkpoint and the summary")
+      .def(
+          "accept",
+          [](Record& r, const StepState& s, const SolveReport& report, const Array& x_n,
+             const Array& x_prev, const Array& x_J, bool final, const std::string& timing)
+          {
+            return r.accept(s, report, {view(x_n), view(x_prev), view(x_J)}, final,
+                            json::parse(timing))
+                .dump();
+          },
+          "Record an accepted step (the Problem's x holds it); its record as JSON")
+      .def("reject", &Record::reject)
+      .def("fail", &Record::fail)
+      .def("interrupt",
+           [](Record& r, int signum, const std::string& timing)
+           { raising_interrupted([&] { r.interrupt(signum, json::parse(timing)); }); })
+      .def_property_readonly("summary", [](const Record& r) { return r.summary().dump(); });
+  m.def(
+      "agreed_interrupt", [](MPICommWrapper comm) { return agreed_interrupt(comm.get()); },
+      "The signal received on any rank, 0 if none (collective)");
+}
 } // namespace
 
 PYBIND11_MODULE(cpp, m)
@@ -150,6 +235,7 @@ PYBIND11_MODULE(cpp, m)
   declare_model(m);
   declare_settings(m);
   declare_problem(m);
+  declare_record(m);
 
   m.def(
       "load_config",

@@ -41,10 +41,11 @@ struct Interrupted : std::runtime_error
       : std::runtime_error("interrupted by " + signal_name(signum) + " after step "
                            + std::to_string(steps) + " (t = " + json(t).dump()
                            + "); continue with --resume"),
-        signum(signum)
+        signum(signum), steps(steps), t(t)
   {
   }
-  int signum;
+  int signum, steps;
+  double t;
 };
 
 /// Called on every rank after each accepted step with its number and record

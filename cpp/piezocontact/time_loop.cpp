@@ -239,9 +239,11 @@ json run(Problem& problem, const RunSettings& settings, const std::filesystem::p
       continue;
     }
     steps.accept();
+    // Recorded while x_prev is still u_{n-1}: the stress holds the velocity
+    record.accept(state_now(), report, {std::span<const double>(xa), xp, system.x_assembled},
+                  steps.done(), run_timing());
     std::copy(xp.begin(), xp.end(), x_prev2.begin());
     std::copy(xa.begin(), xa.end(), xp.begin());
-    record.accept(state_now(), report, states(), steps.done(), run_timing());
   }
   if (signal)
     record.interrupt(signal, run_timing());

@@ -20,14 +20,14 @@ def load(config, overrides=()):
     return json.loads(cpp.configure(json.dumps(config), list(overrides), source)), source
 
 
-def engine_loop(engine, keep):
+def engine_loop(engine, keep, observer=None):
     """The time loop the driver runs: None for the C++ one."""
     if engine not in ENGINES:
         raise ValueError(f"engine = {engine!r}: expected one of {', '.join(ENGINES)}")
     if engine == "cpp":
         return None
     from . import reference
-    return reference.engine(keep)
+    return reference.engine(keep, observer)
 
 
 def solve(config, output, engine="cpp", extra_residual=None, contact_law=None, overrides=(),
@@ -39,15 +39,15 @@ def solve(config, output, engine="cpp", extra_residual=None, contact_law=None, o
     extra_residual(u, phi, w, psi, data): a UFL form added to the residual;
       the Jacobian follows by differentiation.
     contact_law(r, c_p): replaces the normal compliance law p.
-    observer(step, record): called after each accepted step (cpp engine).
+    observer(step, record): called after each accepted step.
     Returns the summary (the dict written to output/summary.json). Raises
     ConfigError, NewtonFailure, OutputError, Interrupted (piezocontact.cpp)."""
     cfg, source = load(config, overrides)
     keep = []
-    loop = engine_loop(engine, keep)
+    loop = engine_loop(engine, keep, observer)
     cpp.prepare_output(str(output), source, comm)
     on_step = None
-    if observer is not None:
+    if observer is not None and loop is None:
         def on_step(n, record):
             observer(n, json.loads(record))
     summary = cpp.run_config(json.dumps(cfg), str(output), source, ENGINES[engine], progress,

@@ -1,0 +1,179 @@
+"""The reference engine: an independent check of the C++ time loop.
+
+It solves the same forms on the same mesh with petsc4py's SNES (Newton, LU,
+a fresh Jacobian at every iteration) in a loop of its own: fixed steps
+t_n = n T/N, the previous state as initial guess, and its own convergence
+test, on the increment of each field. It shares no solver code with the
+C++ loop (no predictor, no LU reuse, no scaled residual test, no step
+control); the record of each step (probes, forces, files, summary) is the
+library's, so that the summaries of all engines compare key by key."""
+
+import json
+import time
+
+import numpy as np
+from dolfinx import fem
+from petsc4py import PETSc
+
+from . import cpp
+
+# Converged when each field's increment is this small against the field;
+# far below the 1e-8 at which the engines are compared
+INCREMENT_RTOL = 1e-11
+
+
+class _Newton:
+    """SNES on F(x) = 0 with the Dirichlet conditions, as dolfinx's
+    NonlinearProblem assembles it (lifting, then the BC rows)."""
+
+    def __init__(self, model, problem, settings, comm):
+        self.x, self.bcs = model.x, problem.bcs
+        self.F_form, self.J_form = model.F, model.J
+        self.fields = {"u": np.asarray(problem.u_dofs), "phi": np.asarray(problem.phi_dofs)}
+        self.b = fem.petsc.create_vector(self.F_form)
+        self.A = fem.petsc.create_matrix(self.J_form)
+        self.snes = PETSc.SNES().create(comm)
+        self.snes.setFunction(self._F, self.b)
+        self.snes.setJacobian(self._J, self.A)
+        # full Newton steps, MUMPS LU; under a prefix of our own
+        prefix = "piezocontact_reference_"
+        options = PETSc.Options()
+        for key, value in {"snes_type": "newtonls", "snes_linesearch_type": "basic",
+                           "ksp_type": "preonly", "pc_type": "lu",
+                           "pc_factor_mat_solver_type": "mumps"}.items():
+            options[prefix + key] = value
+        self.snes.setOptionsPrefix(prefix)
+        self.snes.setFromOptions()
+        self.snes.setTolerances(max_it=max(50, settings.newton.max_iterations))
+        self.snes.setConvergenceTest(self._converged)
+        self.history = []
+        self.assembly_s = 0.0
+
+    def _F(self, snes, x, F):
+        t0 = time.perf_counter()
+        x.ghostUpdate(PETSc.InsertMode.INSERT, PETSc.ScatterMode.FORWARD)
+        x.copy(self.x.vector)
+        self.x.vector.ghostUpdate(PETSc.InsertMode.INSERT, PETSc.ScatterMode.FORWARD)
+        with F.localForm() as f:
+            f.set(0.0)
+        fem.petsc.assemble_vector(F, self.F_form)
+        fem.petsc.apply_lifting(F, [self.J_form], bcs=[self.bcs], x0=[x], scale=-1.0)
+        F.ghostUpdate(PETSc.InsertMode.ADD, PETSc.ScatterMode.REVERSE)
+        fem.petsc.set_bc(F, self.bcs, x, -1.0)
+        self.assembly_s += time.perf_counter() - t0
+
+    def _J(self, snes, x, A, P):
+        t0 = time.perf_counter()
+        A.zeroEntries()
+        fem.petsc.assemble_matrix(A, self.J_form, bcs=self.bcs)
+        A.assemble()
+        self.assembly_s += time.perf_counter() - t0
+
+    def _norms(self, v):
+        """||v_f||_inf of each field, on every rank."""
+        local = v.getArray(readonly=True)
+        comm = self.x.function_space.mesh.comm
+        out = {}
+        for name, dofs in self.fields.items():
+            owned = dofs[dofs < local.size]
+            out[name] = comm.allreduce(float(np.max(np.abs(local[owned]), initial=0.0)),
+                                       op=_MAX)
+        return out
+
+    def _converged(self, snes, it, norms):
+        F_norms = self._norms(snes.getFunction()[0])
+        if it == 0:
+            self.history = [{f: (F_norms[f], None) for f in F_norms}]
+            return 0
+        dx, x = self._norms(snes.getSolutionUpdate()), self._norms(snes.getSolution())
+        relative = {f: dx[f] / x[f] if x[f] > 0 else 0.0 for f in dx}
+        self.history.append({f: (F_norms[f], relative[f]) for f in F_norms})
+        if all(r <= INCREMENT_RTOL for r in relative.values()):
+            return PETSc.SNES.ConvergedReason.CONVERGED_SNORM_RELATIVE
+        if it >= snes.getTolerances()[3]:
+            return PETSc.SNES.ConvergedReason.DIVERGED_MAX_IT
+        return 0
+
+    def solve(self):
+        """Newton from the current x; (iterations, converged)."""
+        x = self.x.vector.copy()
+        self.snes.solve(None, x)
+        x.copy(self.x.vector)
+        self.x.x.scatter_forward()
+        return self.snes.getIterationNumber(), self.snes.getConvergedReason() > 0
+
+
+from mpi4py import MPI  # noqa: E402
+
+_MAX = MPI.MAX
+
+
+def _report(t, k, its, history):
+    report = cpp.SolveReport()
+    report.t, report.k = t, k
+    report.newton_iterations = its
+    report.factorisations = its
+    report.krylov_iterations = its
+    report.history = [{f: cpp.FieldNorms(r, float("nan"), float("nan") if rel is None else rel)
+                       for f, (r, rel) in h.items()} for h in history]
+    return report
+
+
+def run(model, problem, settings, output, summary, progress, observer=None):
+    """The reference loop; returns the summary (JSON text)."""
+    t_start = time.perf_counter()
+    comm = model.mesh.comm
+    newton = _Newton(model, problem, settings, comm)
+    on_step = None
+    if observer is not None:
+        def on_step(n, record):
+            observer(n, json.loads(record))
+    record = cpp.Record(problem, settings, output, summary, progress, on_step)
+    x, x_prev = model.x.x.array, model.x_prev.x.array
+    k = settings.T / settings.steps
+    record.begin(cpp.StepState(0, 0, 0.0, k, k, k), x_prev, x_prev, x_prev)
+    solve_s, iterations = 0.0, 0
+
+    def timing():
+        total = time.perf_counter() - t_start
+        stats = {"count": iterations, "seconds": 0.0}
+        return json.dumps({
+            "total_s": total, "assembly_s": newton.assembly_s,
+            "solve_s": max(0.0, solve_s - newton.assembly_s),
+            "operations": {"residual": stats, "jacobian": stats,
+                           "contact_jacobian": {"count": 0, "seconds": 0.0},
+                           "factorisation": stats, "triangular_solve": stats,
+                           "reused_factorisation": 0}})
+
+    for n in range(1, settings.steps + 1):
+        signum = cpp.agreed_interrupt(comm)
+        if signum:
+            record.interrupt(signum, timing())
+        t = n * k
+        problem.set_time(t, k)
+        x[:] = x_prev
+        fem.petsc.set_bc(model.x.vector, problem.bcs)
+        model.x.x.scatter_forward()
+        t0 = time.perf_counter()
+        its, converged = newton.solve()
+        solve_s += time.perf_counter() - t0
+        iterations += its
+        report = _report(t, k, its, newton.history)
+        if not converged:
+            record.reject(report, "stop")
+            record.fail(f"Newton did not converge at t = {t:g} (k = {k:g}) in {its} "
+                        "iterations (reference engine)")
+        # recorded while x_prev is u_{n-1}: the stress holds the velocity
+        record.accept(cpp.StepState(n, n, t, k, k, k), report, x, x_prev, x,
+                      n == settings.steps, timing())
+        x_prev[:] = x
+    return record.summary
+
+
+def engine(keep, observer=None):
+    """The driver's Engine: runs on the model the factory built last."""
+    def loop(problem, settings, output, summary, resume, progress):
+        if resume:
+            raise cpp.ConfigError(f"{output}: cannot resume: the reference engine runs whole")
+        return run(keep[-1], problem, settings, output, summary, progress, observer)
+    return loop
