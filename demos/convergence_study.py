@@ -25,7 +25,7 @@
 # whole study runs in 15 s on 2 cores); `--finest 256` is the paper's
 # (86 s). Results and their reading: docs/verification.md.
 #
-#     /usr/bin/python3 demos/convergence_study.py [--finest 256] [--solver python]
+#     /usr/bin/python3 demos/convergence_study.py [--finest 256] [--solver reference]
 
 import argparse
 import math
@@ -41,7 +41,7 @@ import numpy as np  # noqa: E402
 import ufl  # noqa: E402
 from dolfinx import fem, geometry  # noqa: E402
 
-from piezocontact import compare, runs  # noqa: E402
+from piezodemos import compare, runs  # noqa: E402
 
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent
@@ -149,7 +149,7 @@ def fmt(r):
 def main():
     ap = argparse.ArgumentParser(description="The paper's Figure 3 on example 1")
     ap.add_argument("--finest", type=int, default=128, help="finest 1/h = 1/k (power of 2)")
-    ap.add_argument("--solver", choices=["cpp", "python"], default="cpp")
+    ap.add_argument("--solver", choices=["cpp", "cpp-jit", "reference"], default="cpp")
     ap.add_argument("--output", default=str(ROOT / "out" / "convergence"))
     ap.add_argument("--build", default=os.environ.get("PIEZO_BUILD", str(ROOT / "build")))
     args = ap.parse_args()

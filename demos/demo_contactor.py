@@ -14,7 +14,7 @@
 # and 0 V on [P5,P6]; [P1,P2] faces a normal-compliance foundation across a
 # gap g. The inverse piezoelectric effect deforms the body.
 #
-# Two configs are run, each with the C++ solver and the Python twin:
+# Two configs are run, each with the C++ solver and the reference engine:
 # * `demos/contactor.json`: the paper's data (g = 1e-4 m, SI units);
 # * `demos/contactor_in_contact.json`: the same with g = 2e-11 m.
 #
@@ -23,7 +23,7 @@
 # demo measures this and says so; the variant shrinks the gap below the
 # piezoelectric motion so that part of Gamma_C does touch the foundation.
 #
-# For each config: the C++/Python comparison, then pictures of the C++ run
+# For each config: the C++/reference comparison, then pictures of the C++ run
 # in DIR/figures: the deformed mesh with contact forces (Figure 5), D over
 # phi (Figure 6), the von Mises stress (Figure 7) and the history of Gamma_C.
 #
@@ -34,7 +34,7 @@ import os
 import sys
 from pathlib import Path
 
-from piezocontact import figures, runs
+from piezodemos import figures, runs
 
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent
@@ -79,7 +79,7 @@ def main():
     for case, text in answers.items():
         print(f"{case:>10}: {text}")
     if worst > 1e-8:
-        print("C++ and Python DISAGREE beyond 1e-8", file=sys.stderr)
+        print("the C++ engine and the reference DISAGREE beyond 1e-8", file=sys.stderr)
         sys.exit(1)
 
 

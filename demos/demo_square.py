@@ -7,7 +7,7 @@
 #       format_name: light
 # ---
 
-# # Example 1 of the paper: the square, C++ against the Python twin
+# # Example 1 of the paper: the square, C++ against the reference engine
 #
 # A viscoelastic ZnO-like square (0,1)^2 is clamped and grounded on its left
 # side, pressed by a traction (0, -10) N/m^2 on its top, and rests on a
@@ -15,10 +15,11 @@
 # (Barboteu, Fernandez & Ouafik 2008, section 4.2). The data are in
 # `demos/square.json`.
 #
-# This demo runs the same config through both solvers:
-# * `build/piezo-contact`, the C++ time loop on the ffcx-compiled forms;
-# * `demos/piezo_contact.py`, dolfinx Python's NonlinearProblem/NewtonSolver
-#   on the same UFL forms, JIT-compiled;
+# This demo runs the same config through two engines:
+# * `piezo-contact`, the C++ time loop on the ffcx-compiled forms;
+# * `python3 -m piezocontact --engine reference`, the independent reference
+#   engine: petsc4py's SNES in a loop of its own on the same UFL forms,
+#   JIT-compiled;
 #
 # and prints the probe values side by side and the relative L2 difference of
 # the u and phi fields at the final time. Extra arguments are passed to both
@@ -31,7 +32,7 @@ import os
 import sys
 from pathlib import Path
 
-from piezocontact import runs
+from piezodemos import runs
 
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent
@@ -47,10 +48,10 @@ def main():
     args = ap.parse_args()
     summaries = runs.run_both(args.config, args.output, args.set, args.build, args.np)
     field_diff, probe_diff = runs.report(summaries, args.output)
-    print(f"\noutputs in {args.output}/{{cpp,python}}: summary.json, solution.xdmf "
+    print(f"\noutputs in {args.output}/{{cpp,reference}}: summary.json, solution.xdmf "
           "(open in ParaView), nodal/*.npy")
     if max(field_diff, probe_diff) > 1e-8:
-        print("C++ and Python DISAGREE beyond 1e-8", file=sys.stderr)
+        print("the C++ engine and the reference DISAGREE beyond 1e-8", file=sys.stderr)
         sys.exit(1)
 
 

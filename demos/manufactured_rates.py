@@ -27,7 +27,7 @@
 #   the error is the time error on any mesh: expect 1 in both norms.
 # * **h = k**: both smooth, refined together (Corollary 3.4): expect 1 in H1.
 #
-# Each runs with the C++ solver and the Python twin (`--solver` for one).
+# Each runs with the C++ solver and the reference engine (`--solver` for one).
 # Results and their reading: docs/verification.md.
 #
 #     /usr/bin/python3 demos/manufactured_rates.py [--finest 128] [--solver cpp]
@@ -42,7 +42,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from piezocontact import runs  # noqa: E402
+from piezodemos import runs  # noqa: E402
 
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent
@@ -143,7 +143,7 @@ def main():
     ap.add_argument("--finest", type=int, default=64,
                     help="finest 1/h of the h studies (power of 2 >= 8); the k study "
                          "goes to 1/k = 2 x finest")
-    ap.add_argument("--solver", choices=["cpp", "python", "both"], default="both")
+    ap.add_argument("--solver", choices=["cpp", "cpp-jit", "reference", "both"], default="both")
     ap.add_argument("--output", default=str(ROOT / "out" / "manufactured"))
     ap.add_argument("--build", default=os.environ.get("PIEZO_BUILD", str(ROOT / "build")))
     args = ap.parse_args()
@@ -152,7 +152,7 @@ def main():
     t0 = time.perf_counter()
     h_levels = [2 ** i for i in range(2, args.finest.bit_length())]
     levels = {"h": h_levels, "k": h_levels + [2 * h_levels[-1]], "h = k": h_levels}
-    solvers = ["cpp", "python"] if args.solver == "both" else [args.solver]
+    solvers = ["cpp", "reference"] if args.solver == "both" else [args.solver]
     lines, results = [], {}
     for solver in solvers:
         for study in STUDIES:
@@ -165,9 +165,9 @@ def main():
     if len(solvers) == 2:
         worst = max(abs(a["errors"][k] - b["errors"][k]) / a["errors"][k]
                     for study in STUDIES
-                    for a, b in zip(results[("cpp", study)][0], results[("python", study)][0])
+                    for a, b in zip(results[("cpp", study)][0], results[("reference", study)][0])
                     for k in NORMS)
-        lines.append(f"C++ vs Python: largest relative difference of any error above: "
+        lines.append(f"C++ vs reference: largest relative difference of any error above: "
                      f"{worst:.1e}")
         print(lines[-1])
     lines.append(f"whole study {time.perf_counter() - t0:.1f} s")

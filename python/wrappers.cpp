@@ -6,6 +6,7 @@
 #include <dolfinx/fem/DirichletBC.h>
 #include <piezocontact/config.h>
 #include <piezocontact/driver.h>
+#include <piezocontact/mesh.h>
 #include <piezocontact/output.h>
 #include <piezocontact/record.h>
 #include <pybind11/functional.h>
@@ -249,6 +250,26 @@ PYBIND11_MODULE(cpp, m)
       { return configure(json::parse(cfg), overrides, source).dump(); },
       py::arg("cfg"), py::arg("overrides"), py::arg("source"),
       "Override and validate a config given as JSON text");
+  m.def(
+      "build_mesh",
+      [](const std::string& cfg, MPICommWrapper comm, std::optional<std::string> mesh_file,
+         const std::string& source)
+      {
+        std::optional<std::filesystem::path> file;
+        if (mesh_file)
+          file = *mesh_file;
+        return build_mesh(json::parse(cfg), comm.get(), file, source);
+      },
+      py::arg("cfg"), py::arg("comm"), py::arg("mesh_file"), py::arg("source") = "config",
+      "The mesh of a validated config: the built-in square, or an XDMF file with "
+      "facet tags and its NAME.boundaries.json");
+  m.def(
+      "set_constants",
+      [](const std::string& cfg, const std::map<std::string, int>& tag_of,
+         const ConstantMap& constants, const std::string& source)
+      { set_constants(json::parse(cfg), tag_of, constants, source); },
+      py::arg("cfg"), py::arg("tag_of"), py::arg("constants"), py::arg("source") = "config",
+      "Fill the forms' Constants from a validated config");
   m.def(
       "resumable_summary",
       [](const std::string& dir, const std::vector<std::string>& overrides,

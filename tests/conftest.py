@@ -1,5 +1,8 @@
-"""Fixtures: run the C++ executable or the Python twin on a config, with
-overrides and optionally under mpirun, and hand back its summary."""
+"""Fixtures: run an engine on a config through its command line, with
+overrides and optionally under mpirun, and hand back its summary. Engines:
+"cpp" the executable (ahead-of-time kernels), "cpp-jit" the same C++ loop
+from `python3 -m piezocontact` (JIT kernels), "reference" the independent
+reference engine (`--engine reference`)."""
 
 import json
 import os
@@ -16,9 +19,13 @@ SQUARE = ROOT / "demos" / "square.json"
 ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
 
 
+MODULE = ["/usr/bin/python3", "-m", "piezocontact"]
+
+
 def command(solver, np_=1):
     exe = {"cpp": [str(BUILD / "piezo-contact")],
-           "python": ["/usr/bin/python3", str(ROOT / "demos" / "piezo_contact.py")]}[solver]
+           "cpp-jit": MODULE,
+           "reference": MODULE + ["--engine", "reference"]}[solver]
     return (["mpirun", "-n", str(np_)] if np_ > 1 else []) + exe
 
 
@@ -39,12 +46,21 @@ def run_solver(solver, out, overrides=(), config=SQUARE, np_=1, check=True, resu
 
 @pytest.fixture(scope="session")
 def small_runs(tmp_path_factory):
-    """Example 1 at n = 8, 8 steps, nodal output at every step: both solvers."""
+    """Example 1 at n = 8, 8 steps, nodal output at every step: every engine."""
     base = tmp_path_factory.mktemp("square8")
     overrides = ["mesh.n=8", "time.steps=8", "output.nodal=all"]
-    return {s: (run_solver(s, base / s, overrides)[0], base / s) for s in ("cpp", "python")}
+    return {s: (run_solver(s, base / s, overrides)[0], base / s) for s in ENGINES}
 
 
-@pytest.fixture(params=["cpp", "python"])
+ENGINES = ("cpp", "cpp-jit", "reference")
+
+
+@pytest.fixture(params=["cpp", "cpp-jit"])
 def solver(request):
+    """The two front doors of the C++ loop (the same driver behind both)."""
+    return request.param
+
+
+@pytest.fixture(params=ENGINES)
+def engine(request):
     return request.param

@@ -12,7 +12,7 @@ import ufl
 from conftest import ENV, ROOT, run_solver
 from dolfinx import fem
 from mpi4py import MPI
-from piezocontact import compare, figures, meshing
+from piezodemos import compare, figures
 
 CONTACTOR = ROOT / "demos" / "contactor.json"
 VARIANT = ROOT / "demos" / "contactor_in_contact.json"

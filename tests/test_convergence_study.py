@@ -9,7 +9,7 @@ import pytest
 import ufl
 from conftest import ENV, ROOT
 from dolfinx import fem
-from piezocontact import compare
+from piezodemos import compare
 
 sys.path.insert(0, str(ROOT / "demos"))
 

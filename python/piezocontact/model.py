@@ -38,6 +38,23 @@ def python_mesh(named):
     return dmesh.Mesh(cpp_mesh, ufl.Mesh(ufl.VectorElement("Lagrange", cell, 1)))
 
 
+def zero_constants(msh, manufactured=False):
+    """The Constants of the forms (and of a manufactured solution), zero."""
+    shapes = dict(pf.constant_shapes())
+    if manufactured:
+        shapes.update(mms.constant_shapes())
+    return {name: fem.Constant(msh, np.zeros(shape)) for name, shape in shapes.items()}
+
+
+def constants(msh, cfg, tag_of, source="config"):
+    """The Constants of the forms on `msh`, filled from a validated config by
+    the C++ core (as for a run)."""
+    data = zero_constants(msh, "manufactured" in cfg)
+    cpp.set_constants(json.dumps(cfg), tag_of, {n: c._cpp_object for n, c in data.items()},
+                      source)
+    return data
+
+
 def _depends_on_state(form, x, x_prev, data):
     """Whether a form changes within a run: it involves x, x_prev or t."""
     if form.empty():
@@ -65,10 +82,7 @@ class JitModel:
         self.x = fem.Function(self.W, name="x")
         self.x_prev = fem.Function(self.W, name="x_prev")
         manufactured = "manufactured" in cfg
-        shapes = dict(pf.constant_shapes())
-        if manufactured:
-            shapes.update(mms.constant_shapes())
-        self.data = {name: fem.Constant(msh, np.zeros(shape)) for name, shape in shapes.items()}
+        self.data = zero_constants(msh, manufactured)
         law = contact_law or pf.p
 
         ds = ufl.Measure("ds", domain=msh, subdomain_data=named.facet_tags)

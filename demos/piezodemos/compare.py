@@ -1,4 +1,4 @@
-"""Compare two runs (e.g. C++ and Python) of the same config: probe values at
+"""Compare two runs (e.g. the C++ engine and the reference) of the same config: probe values at
 every step and the relative L2 difference of the u and phi fields.
 
 Fields are compared as finite element functions: the nodal values each solver
@@ -14,7 +14,8 @@ import ufl
 from dolfinx import fem
 from mpi4py import MPI
 
-from . import meshing
+from piezocontact import cpp
+from piezocontact.model import python_mesh
 
 
 def load_summary(out_dir):
@@ -46,7 +47,9 @@ class FieldComparer:
     """P1 functions on the config's mesh filled from nodal files."""
 
     def __init__(self, cfg, mesh_file=None, comm=MPI.COMM_SELF):
-        self.mesh, self.facet_tags, self.tag_of = meshing.build(cfg, comm, mesh_file)
+        self.named = cpp.build_mesh(json.dumps(cfg), comm, mesh_file)
+        self.mesh = python_mesh(self.named)
+        self.facet_tags, self.tag_of = self.named.facet_tags, self.named.tag_of
         self.V = {"u": fem.VectorFunctionSpace(self.mesh, ("Lagrange", 1)),
                   "phi": fem.FunctionSpace(self.mesh, ("Lagrange", 1))}
         self._order = {f: self._lexorder(V.tabulate_dof_coordinates()[:, :2])
@@ -93,7 +96,7 @@ def field_differences(dir_a, dir_b, summary):
     return out
 
 
-def table(run, ref, names=("C++", "Python")):
+def table(run, ref, names=("C++", "reference")):
     """Side-by-side probe values at the final time, as text."""
     a, b = run["steps"][-1], ref["steps"][-1]
     lines = [f"probe values at t = {b['t']:g}",

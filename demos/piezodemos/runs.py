@@ -1,5 +1,6 @@
-"""Run the C++ solver and the Python twin on one config and report how they
-compare: the engine of the demos."""
+"""Run the engines on one config and report how they compare: the C++
+executable (ahead-of-time kernels), the C++ loop from Python (JIT kernels)
+and the independent reference engine."""
 
 import math
 import os
@@ -9,14 +10,13 @@ from pathlib import Path
 
 from . import compare
 
-DEMOS = Path(__file__).resolve().parents[1]
-
-
 def solver_commands(build_dir, np_):
-    """The two command lines, optionally under mpirun."""
+    """The command line of each engine, optionally under mpirun."""
     mpi = ["mpirun", "-n", str(np_)] if np_ > 1 else []
+    module = ["/usr/bin/python3", "-m", "piezocontact"]
     return {"cpp": mpi + [str(Path(build_dir) / "piezo-contact")],
-            "python": mpi + ["/usr/bin/python3", str(DEMOS / "piezo_contact.py")]}
+            "cpp-jit": mpi + module,
+            "reference": mpi + module + ["--engine", "reference"]}
 
 
 ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
@@ -40,11 +40,13 @@ def observed_rates(sizes, errors):
                      for s0, s1, e0, e1 in zip(sizes, sizes[1:], errors, errors[1:])]
 
 
-def run_both(config, out_dir, overrides, build_dir, np_=1):
-    """Run C++ then Python on one config; return their summaries."""
+def run_both(config, out_dir, overrides, build_dir, np_=1, engines=("cpp", "reference")):
+    """Run the engines on one config (the executable and the reference by
+    default); return their summaries."""
     env = ENV
     summaries = {}
-    for name, cmd in solver_commands(build_dir, np_).items():
+    for name in engines:
+        cmd = solver_commands(build_dir, np_)[name]
         args = cmd + ["--config", str(config), "--output", str(Path(out_dir) / name)]
         for o in overrides:
             args += ["--set", o]
@@ -57,10 +59,10 @@ def run_both(config, out_dir, overrides, build_dir, np_=1):
 
 
 def report(summaries, out_dir):
-    cpp, py = summaries["cpp"], summaries["python"]
+    cpp, py = summaries["cpp"], summaries["reference"]
     print()
     print(compare.table(cpp, py))
-    fields = compare.field_differences(Path(out_dir) / "cpp", Path(out_dir) / "python", py)
+    fields = compare.field_differences(Path(out_dir) / "cpp", Path(out_dir) / "reference", py)
     final = fields[max(fields)]
     print(f"\nrelative L2 difference at t = {cpp['steps'][-1]['t']:g}: "
           f"u {final['u']:.2e}, phi {final['phi']:.2e}")

@@ -14,8 +14,9 @@ import ufl  # noqa: E402
 from dolfinx import fem  # noqa: E402
 from matplotlib.tri import Triangulation  # noqa: E402
 
+from piezocontact.model import constants, pf  # noqa: E402
+
 from . import compare  # noqa: E402
-from .problem import make_constants, pf  # noqa: E402
 
 
 class RunState:
@@ -35,7 +36,7 @@ class RunState:
         # stress shown is the elastic + piezoelectric part only
         self.viscous = previous.exists() or n == 1
         u_prev = fields.function(previous, "u") if previous.exists() else u
-        data = make_constants(msh, cfg, fields.tag_of)
+        data = constants(msh, cfg, fields.tag_of)
 
         V, Vu = fields.V["phi"], fields.V["u"]
         cells = V.dofmap.list.array.reshape(-1, 3)
