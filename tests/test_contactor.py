@@ -12,6 +12,8 @@ import ufl
 from conftest import ENV, ROOT, run_solver
 from dolfinx import fem
 from mpi4py import MPI
+from piezocontact import cpp
+from piezocontact.model import python_mesh
 from piezodemos import compare, figures
 
 CONTACTOR = ROOT / "demos" / "contactor.json"
@@ -40,7 +42,7 @@ def edge_lengths(points, edges):
 def variant_runs(tmp_path_factory):
     base = tmp_path_factory.mktemp("contactor")
     return {s: (run_solver(s, base / s, SMALL, config=VARIANT)[0], base / s)
-            for s in ("cpp", "python")}
+            for s in ("cpp", "reference")}
 
 
 @pytest.mark.parametrize("name", ["contactor", "square"])
@@ -51,7 +53,8 @@ def test_facet_tags_from_xdmf_measure_the_polygon_edges(name, tmp_path):
     out = tmp_path / f"{name}.xdmf"
     subprocess.run(["/usr/bin/python3", str(script), "--size", "0.3", "--output", str(out)],
                    check=True, env=ENV, capture_output=True)
-    msh, tags, tag_of = meshing.build({}, MPI.COMM_WORLD, out)
+    named = cpp.build_mesh("{}", MPI.COMM_WORLD, str(out))
+    msh, tags, tag_of = python_mesh(named), named.facet_tags, named.tag_of
     ds = ufl.Measure("ds", domain=msh, subdomain_data=tags)
     one = fem.Constant(msh, 1.0)
     expected = edge_lengths(*polygon(script))
@@ -61,7 +64,7 @@ def test_facet_tags_from_xdmf_measure_the_polygon_edges(name, tmp_path):
         assert measured == pytest.approx(length, rel=1e-12, abs=1e-12), boundary
 
 
-def test_both_solvers_see_the_named_boundaries(variant_runs):
+def test_both_engines_see_the_named_boundaries(variant_runs):
     points, edges = polygon(ROOT / "meshes" / "contactor.py")
     expected = edge_lengths(points, edges)
     for solver, (summary, _) in variant_runs.items():
@@ -70,8 +73,8 @@ def test_both_solvers_see_the_named_boundaries(variant_runs):
                 (solver, name)
 
 
-def test_cpp_and_python_agree_on_the_contactor(variant_runs):
-    (cpp, cpp_dir), (py, py_dir) = variant_runs["cpp"], variant_runs["python"]
+def test_cpp_and_reference_agree_on_the_contactor(variant_runs):
+    (cpp, cpp_dir), (py, py_dir) = variant_runs["cpp"], variant_runs["reference"]
     assert cpp["dofs"] == py["dofs"]
     for d in compare.probe_differences(cpp, py):
         assert d["u"] < TOL and d["phi"] < TOL, d
@@ -128,7 +131,7 @@ def test_paper_data_leave_the_gap_open(tmp_path):
         assert 0 < step["max_penetration"] + g < 1e-9 < g  # moves ~1e-10 m toward it
 
 
-@pytest.mark.parametrize("solver", ["cpp", "python"])
+@pytest.mark.parametrize("solver", ["cpp", "cpp-jit"])
 def test_mesh_size_from_the_command_line(solver, tmp_path):
     coarse, _ = run_solver(solver, tmp_path / "a", ["mesh.size=0.4", "time.steps=1"],
                            config=CONTACTOR)
@@ -139,10 +142,10 @@ def test_mesh_size_from_the_command_line(solver, tmp_path):
 
 def test_missing_geometry_is_a_clear_error(tmp_path):
     messages = {}
-    for solver in ("cpp", "python"):
+    for solver in ("cpp", "cpp-jit"):
         _, proc = run_solver(solver, tmp_path / solver, ["mesh.geometry=nope.py"],
                              config=CONTACTOR, check=False)
         assert proc.returncode == 2
         messages[solver] = proc.stderr.strip().splitlines()[-1]
-    assert messages["cpp"] == messages["python"]
+    assert messages["cpp"] == messages["cpp-jit"]
     assert messages["cpp"].startswith(f'error: {CONTACTOR}: mesh.geometry = "nope.py": no such file')

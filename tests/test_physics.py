@@ -3,16 +3,16 @@
 import numpy as np
 import pytest
 from conftest import SQUARE, run_solver
-from mpi4py import MPI
-from piezocontact import config, twin
+import piezocontact
 
 TRACTION_TOTAL = np.array([0.0, -10.0])  # (0, -10) N/m^2 on the top edge, length 1
 
 
-def run_twin(tmp_path, *overrides):
-    cfg = config.load(SQUARE, ["mesh.n=8", "time.steps=4", "output.xdmf=false",
-                               "output.nodal=\"none\"", *overrides])
-    return twin.run(cfg, tmp_path, MPI.COMM_WORLD, progress=False)
+def run_in_process(tmp_path, *overrides, engine="cpp"):
+    """Example 1 at n = 8, 4 steps, through piezocontact.solve."""
+    return piezocontact.solve(SQUARE, tmp_path, engine=engine, progress=False,
+                              overrides=["mesh.n=8", "time.steps=4", "output.xdmf=false",
+                                         "output.nodal=none", *overrides])
 
 
 def test_global_equilibrium(small_runs, solver):
@@ -40,8 +40,8 @@ def test_zero_load_gives_zero_solution(tmp_path, solver):
 def test_without_contact_the_problem_is_linear(tmp_path):
     """c_p = 0: the linear viscoelastic-piezoelectric problem. Every step takes
     one Newton iteration and the response scales with the load."""
-    a = run_twin(tmp_path / "a", "contact.c_p=0")
-    b = run_twin(tmp_path / "b", "contact.c_p=0", "boundaries.top.traction=[0,-20]")
+    a = run_in_process(tmp_path / "a", "contact.c_p=0")
+    b = run_in_process(tmp_path / "b", "contact.c_p=0", "boundaries.top.traction=[0,-20]")
     for sa, sb in zip(a["steps"], b["steps"]):
         assert sa["newton_iterations"] == 1
         assert sa["contact_force"] == [0.0, 0.0]
@@ -55,7 +55,7 @@ def test_stiffer_foundation_penetrates_less(tmp_path):
     like 1/c_p once the foundation is much stiffer than the body."""
     pen = {}
     for c_p in (0.0, 1e10, 1e11, 1e12, 1e13, 1e14):
-        pen[c_p] = run_twin(tmp_path / f"{c_p:g}", f"contact.c_p={c_p}")["steps"][-1][
+        pen[c_p] = run_in_process(tmp_path / f"{c_p:g}", f"contact.c_p={c_p}")["steps"][-1][
             "max_penetration"]
     values = [pen[c] for c in sorted(pen)]
     assert all(b < a for a, b in zip(values, values[1:])), pen

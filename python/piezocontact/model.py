@@ -6,6 +6,7 @@ same UFL, compiled at run time, so that a script can change the physics with
 no rebuild (`extra_residual`, `contact_law`)."""
 
 import json
+import os
 import sys
 from pathlib import Path
 
@@ -18,9 +19,11 @@ from . import cpp
 
 
 def _forms_dir():
-    """forms/ as installed with the package, or the source tree's."""
+    """$PIEZOCONTACT_FORMS (an edited copy of forms/, used with no rebuild),
+    else forms/ as installed with the package, or the source tree's."""
     here = Path(__file__).resolve().parent
-    for d in (here / "forms", here.parents[1] / "forms"):
+    chosen = os.environ.get("PIEZOCONTACT_FORMS")
+    for d in ([Path(chosen)] if chosen else []) + [here / "forms", here.parents[1] / "forms"]:
         if (d / "piezo_forms.py").is_file():
             return d
     raise ImportError(f"forms/piezo_forms.py not found next to {here}")
