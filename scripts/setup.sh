@@ -42,3 +42,8 @@ fi
 # Debian's packages live in /usr/bin/python3, not in a pyenv python3 on PATH
 cmake -B build -S . -DCMAKE_BUILD_TYPE=Release -DPython3_EXECUTABLE=/usr/bin/python3 >/dev/null
 cmake --build build -j"$(nproc)"
+# Install the library, headers, CMake package, `piezo-contact` and the Python
+# package (with its forms/) under /usr/local: `import piezocontact` from any folder
+SUDO=""
+[ "$(id -u)" -eq 0 ] || SUDO="sudo"
+$SUDO cmake --install build >/dev/null
