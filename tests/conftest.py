@@ -15,8 +15,12 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "demos"))
 BUILD = Path(os.environ.get("PIEZO_BUILD", ROOT / "build"))
+# This tree's build of the Python package, not an installed one
+sys.path.insert(0, str(BUILD / "python"))
 SQUARE = ROOT / "demos" / "square.json"
-ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
+           PYTHONPATH=os.pathsep.join([str(BUILD / "python"), str(ROOT / "demos")]
+                                      + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p]))
 
 
 MODULE = ["/usr/bin/python3", "-m", "piezocontact"]
