@@ -438,6 +438,16 @@ json configure(json cfg, const std::vector<std::string>& overrides,
   return cfg;
 }
 
+void bcast_error(std::string& error, MPI_Comm comm)
+{
+  int len = error.size();
+  MPI_Bcast(&len, 1, MPI_INT, 0, comm);
+  error.resize(len);
+  MPI_Bcast(error.data(), len, MPI_CHAR, 0, comm);
+  if (!error.empty())
+    throw ConfigError(error);
+}
+
 RunSettings run_settings(const json& cfg)
 {
   RunSettings s;

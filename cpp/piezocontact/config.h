@@ -7,6 +7,7 @@
 #include "model.h"
 #include "settings.h"
 
+#include <mpi.h>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
@@ -33,6 +34,10 @@ json load_config(const std::string& path,
 /// Apply overrides to a config and validate it; errors name `source`
 json configure(json cfg, const std::vector<std::string>& overrides,
                const std::string& source);
+
+/// Throw rank 0's error (if not empty) as the same ConfigError on every
+/// rank, so that none waits for the others. Collective.
+void bcast_error(std::string& error, MPI_Comm comm);
 
 /// The typed settings of a validated config (boundaries in sorted order)
 RunSettings run_settings(const json& cfg);

@@ -105,12 +105,7 @@ void prepare_output(const std::filesystem::path& dir, const std::string& source,
               + ": cannot write there: " + std::strerror(errno);
     std::filesystem::remove(probe, ec);
   }
-  int len = error.size();
-  MPI_Bcast(&len, 1, MPI_INT, 0, comm);
-  error.resize(len);
-  MPI_Bcast(error.data(), len, MPI_CHAR, 0, comm);
-  if (!error.empty())
-    throw ConfigError(error);
+  bcast_error(error, comm);
 }
 json run_config(const RunRequest& request, MPI_Comm comm, const ModelFactory& make_model,
                 const Engine& engine, const StepObserver& observer)

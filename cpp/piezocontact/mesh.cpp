@@ -38,17 +38,6 @@ std::filesystem::path resolve(const std::string& value, const std::string& sourc
                          : std::filesystem::absolute(source).parent_path() / p;
 }
 
-/// Throw the same error on every rank (rank 0 found it)
-void bcast_error(std::string& error, MPI_Comm comm)
-{
-  int len = error.size();
-  MPI_Bcast(&len, 1, MPI_INT, 0, comm);
-  error.resize(len);
-  MPI_Bcast(error.data(), len, MPI_CHAR, 0, comm);
-  if (!error.empty())
-    throw ConfigError(error);
-}
-
 mesh::DiagonalType diagonal_type(const std::string& name)
 {
   const std::map<std::string, mesh::DiagonalType> types
