@@ -96,7 +96,8 @@ void declare_model(py::module& m)
       .def_readwrite("stress", &Model::stress)
       .def_readwrite("u_exact", &Model::u_exact)
       .def_readwrite("phi_exact", &Model::phi_exact)
-      .def_readwrite("squared_errors", &Model::squared_errors);
+      .def_readwrite("squared_errors", &Model::squared_errors)
+      .def_readwrite("boundary_measures", &Model::boundary_measures);
 }
 
 void declare_settings(py::module& m)

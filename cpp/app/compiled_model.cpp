@@ -69,6 +69,19 @@ Model compiled_model(const NamedMesh& named, const json& cfg)
   m.electric_displacement = expression(*expression_piezo_contact_electric_displacement,
                                        coefficients);
   m.stress = expression(*expression_piezo_contact_stress, coefficients);
+  for (const auto& [name, tag] : named.tag_of)
+  {
+    // The form measures the facets tagged 1: tag this boundary's so
+    std::vector<std::int32_t> facets;
+    for (std::size_t i = 0; i < named.facet_tags->indices().size(); ++i)
+      if (named.facet_tags->values()[i] == tag)
+        facets.push_back(named.facet_tags->indices()[i]);
+    const mesh::MeshTags<int> only(mesh, mesh->topology().dim() - 1, facets,
+                                   std::vector<int>(facets.size(), 1));
+    m.boundary_measures[name] = std::make_shared<const fem::Form<double>>(fem::create_form<double>(
+        *form_piezo_contact_boundary_measure, {}, coefficients, consts,
+        {{fem::IntegralType::exterior_facet, &only}}, mesh));
+  }
   if (manufactured)
   {
     // the loads of the exact solution are in its F; the exact fields are

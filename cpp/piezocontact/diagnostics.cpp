@@ -153,4 +153,14 @@ std::vector<double> contact_force(const Problem& problem)
   return f;
 }
 
+std::map<std::string, double> boundary_measures(const Problem& problem)
+{
+  std::map<std::string, double> out;
+  for (const auto& [name, form] : problem.model.boundary_measures)
+  {
+    const double local = fem::assemble_scalar(*form); // owned facets only
+    MPI_Allreduce(&local, &out[name], 1, MPI_DOUBLE, MPI_SUM, problem.comm);
+  }
+  return out;
+}
 } // namespace piezocontact

@@ -1,5 +1,4 @@
-// Per-step quantities of interest, as demos/piezocontact/diagnostics.py
-// computes them: probe values, the contact resultant and the largest u.nu - g
+// Quantities of interest: per step, probe values, the contact resultant and the largest u.nu - g
 // on Gamma_C (the reactions come from the residual: nonlinear_system.h).
 #pragma once
 
@@ -42,5 +41,9 @@ private:
 
 /// Resultant force of the foundation on the body (N/m)
 std::vector<double> contact_force(const Problem& problem);
+
+/// Length (area in 3D) of each named boundary, from Model::boundary_measures.
+/// Collective.
+std::map<std::string, double> boundary_measures(const Problem& problem);
 
 } // namespace piezocontact

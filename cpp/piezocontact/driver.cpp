@@ -1,4 +1,5 @@
 #include "driver.h"
+#include "diagnostics.h"
 #include "mesh.h"
 #include "output.h"
 
@@ -136,7 +137,7 @@ json run_config(const RunRequest& request, MPI_Comm comm, const ModelFactory& ma
                {"config", cfg},
                {"config_file", std::filesystem::absolute(request.source).string()},
                {"mesh_file", mesh_file ? json(mesh_file->string()) : json(nullptr)},
-               {"boundary_lengths", boundary_lengths(mesh, comm)}};
+               {"boundary_lengths", boundary_measures(problem)}};
   }
   if (engine)
     return engine(problem, settings, request.output, summary, request.resume != nullptr,

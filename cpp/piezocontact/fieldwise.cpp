@@ -1,5 +1,7 @@
 #include "fieldwise.h"
 
+#include <dolfinx/la/petsc.h>
+
 #include <cmath>
 #include <limits>
 #include <set>
@@ -24,8 +26,10 @@ FieldwiseConvergence::FieldwiseConvergence(
 
 void FieldwiseConvergence::set_scaling(Mat A)
 {
-  Vec d;
-  MatCreateVecs(A, nullptr, &d);
+  Vec v;
+  MatCreateVecs(A, nullptr, &v);
+  const dolfinx::la::petsc::Vector diagonal(v, false); // destroys v
+  const Vec d = diagonal.vec();
   MatGetDiagonal(A, d);
   PetscInt n;
   VecGetLocalSize(d, &n);
@@ -35,7 +39,6 @@ void FieldwiseConvergence::set_scaling(Mat A)
   for (PetscInt i = 0; i < n; ++i)
     _sqrt_d[i] = a[i] != 0.0 ? std::sqrt(std::abs(a[i])) : 1.0;
   VecRestoreArrayRead(d, &a);
-  VecDestroy(&d);
 }
 
 bool FieldwiseConvergence::check(std::span<const double> x,

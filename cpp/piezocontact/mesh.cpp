@@ -210,26 +210,4 @@ NamedMesh build_mesh(const json& cfg, MPI_Comm comm,
   return mesh_file ? read_xdmf(*mesh_file, comm, source) : unit_square(cfg, comm);
 }
 
-std::map<std::string, double> boundary_lengths(const NamedMesh& m, MPI_Comm comm)
-{
-  const std::int32_t n_owned = m.mesh->topology().index_map(1)->size_local();
-  const auto x = m.mesh->geometry().x();
-  const auto& idx = m.facet_tags->indices();
-  const auto& val = m.facet_tags->values();
-  std::map<std::string, double> out;
-  for (const auto& [name, tag] : m.tag_of)
-  {
-    std::vector<std::int32_t> facets;
-    for (std::size_t i = 0; i < idx.size(); ++i)
-      if (val[i] == tag and idx[i] < n_owned)
-        facets.push_back(idx[i]);
-    const auto g = mesh::entities_to_geometry(*m.mesh, 1, facets, false);
-    double local = 0;
-    for (std::size_t i = 0; i < facets.size(); ++i)
-      local += std::hypot(x[3 * g[2 * i + 1]] - x[3 * g[2 * i]],
-                          x[3 * g[2 * i + 1] + 1] - x[3 * g[2 * i] + 1]);
-    MPI_Allreduce(&local, &out[name], 1, MPI_DOUBLE, MPI_SUM, comm);
-  }
-  return out;
-}
 } // namespace piezocontact

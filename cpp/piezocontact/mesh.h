@@ -1,5 +1,4 @@
-// Meshes and named boundaries, as demos/piezocontact/meshing.py builds them:
-// the built-in unit square, a gmsh script of meshes/ run at mesh.size, or an
+// Meshes and named boundaries: the built-in unit square, a gmsh script of meshes/ run at mesh.size, or an
 // XDMF mesh with facet tags and a NAME.boundaries.json sidecar. The facet
 // tag of a named boundary becomes 1 + its index in sorted name order.
 #pragma once
@@ -26,7 +25,4 @@ prepare_mesh(const json& cfg, const std::string& source,
 NamedMesh build_mesh(const json& cfg, MPI_Comm comm,
                      const std::optional<std::filesystem::path>& mesh_file,
                      const std::string& source);
-
-/// Length of each named boundary: the sum of its owned facets' lengths
-std::map<std::string, double> boundary_lengths(const NamedMesh& m, MPI_Comm comm);
 } // namespace piezocontact

@@ -52,5 +52,8 @@ struct Model
   /// reported per step as their square roots
   std::shared_ptr<const dolfinx::fem::Expression<double>> u_exact, phi_exact;
   std::map<std::string, std::shared_ptr<const dolfinx::fem::Form<double>>> squared_errors;
+
+  /// The functional 1 ds over each named boundary: its length (area in 3D)
+  std::map<std::string, std::shared_ptr<const dolfinx::fem::Form<double>>> boundary_measures;
 };
 } // namespace piezocontact

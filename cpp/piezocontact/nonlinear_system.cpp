@@ -1,6 +1,5 @@
 #include "nonlinear_system.h"
 
-#include <chrono>
 #include <dolfinx/fem/assembler.h>
 #include <dolfinx/fem/petsc.h>
 #include <dolfinx/la/petsc.h>
@@ -10,20 +9,6 @@ namespace piezocontact
 using namespace dolfinx;
 namespace
 {
-using Clock = std::chrono::steady_clock;
-
-struct Timer
-{
-  explicit Timer(OperationStats& s) : _s(s), _t0(Clock::now()) {}
-  ~Timer()
-  {
-    _s.seconds += std::chrono::duration<double>(Clock::now() - _t0).count();
-    ++_s.count;
-  }
-  OperationStats& _s;
-  Clock::time_point _t0;
-};
-
 /// This rank's rows of M, values only (the sparsity pattern is fixed).
 /// Mat-level MatEqual/MatCopy fail on MPIAIJ matrices assembled like this.
 std::vector<double> local_values(Mat M)
@@ -58,23 +43,17 @@ void assemble_into(Mat M, const fem::Form<double>& a,
 
 NonlinearSystem::NonlinearSystem(Problem& p, FieldwiseConvergence& monitor, KSP ksp,
                                  bool reuse_lu)
-    : _p(p), _monitor(monitor), _ksp(ksp), _reuse(reuse_lu)
+    : b(la::petsc::create_vector(*p.W->dofmap()->index_map, p.W->dofmap()->index_map_bs()),
+        false),
+      A(fem::petsc::create_matrix(*p.model.J), false),
+      _p(p), _monitor(monitor), _ksp(ksp), _reuse(reuse_lu),
+      _Jc(fem::petsc::create_matrix(*p.model.J_contact), false)
 {
-  b = la::petsc::create_vector(*p.W->dofmap()->index_map, p.W->dofmap()->index_map_bs());
-  A = fem::petsc::create_matrix(*p.model.J);
-  _Jc = fem::petsc::create_matrix(*p.model.J_contact);
-}
-
-NonlinearSystem::~NonlinearSystem()
-{
-  VecDestroy(&b);
-  MatDestroy(&A);
-  MatDestroy(&_Jc);
 }
 
 void NonlinearSystem::F(const Vec x, Vec r)
 {
-  Timer timer(residual);
+  ScopedTimer timer(residual, "residual");
   Vec r_local;
   VecGhostGetLocalForm(r, &r_local);
   VecSet(r_local, 0.0);
@@ -103,9 +82,9 @@ void NonlinearSystem::J(const Vec, Mat M)
 {
   bool same = false;
   {
-    Timer timer(contact_jacobian);
-    assemble_into(_Jc, *_p.model.J_contact, {}, *_p.W);
-    std::vector<double> values = local_values(_Jc);
+    ScopedTimer timer(contact_jacobian, "contact Jacobian");
+    assemble_into(_Jc.mat(), *_p.model.J_contact, {}, *_p.W);
+    std::vector<double> values = local_values(_Jc.mat());
     const double k = _p.model.constants.at("k")->value[0];
     int equal = _reuse and k == _k_last and values == _Jc_last;
     MPI_Allreduce(MPI_IN_PLACE, &equal, 1, MPI_INT, MPI_LAND, _p.comm);
@@ -119,7 +98,7 @@ void NonlinearSystem::J(const Vec, Mat M)
     return;
   }
   {
-    Timer timer(jacobian);
+    ScopedTimer timer(jacobian, "Jacobian");
     assemble_into(M, *_p.model.J, _p.bcs, *_p.W);
   }
   const auto x = _p.x->x()->array();
@@ -127,7 +106,7 @@ void NonlinearSystem::J(const Vec, Mat M)
   k_assembled = _k_last;
   _monitor.set_scaling(M);
   // Factorise here, timed apart from the triangular solves of KSPSolve
-  Timer timer(factorisation);
+  ScopedTimer timer(factorisation, "LU factorisation");
   KSPSetOperators(_ksp, M, M);
   KSPSetUp(_ksp);
 }

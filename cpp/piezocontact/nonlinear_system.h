@@ -13,29 +13,26 @@
 
 #include "fieldwise.h"
 #include "problem.h"
+#include "timing.h"
 
 #include <array>
+#include <dolfinx/la/petsc.h>
 #include <petscksp.h>
 
 namespace piezocontact
 {
-struct OperationStats
-{
-  int count = 0;
-  double seconds = 0.0;
-};
-
 class NonlinearSystem
 {
 public:
   NonlinearSystem(Problem& p, FieldwiseConvergence& monitor, KSP ksp, bool reuse_lu);
-  ~NonlinearSystem();
 
   void F(const Vec x, Vec r);
   void J(const Vec x, Mat M);
 
-  Vec b;
-  Mat A;
+  /// The residual vector and the Jacobian matrix (RAII: PETSc objects
+  /// destroyed with the system)
+  dolfinx::la::petsc::Vector b;
+  dolfinx::la::petsc::Matrix A;
   OperationStats residual, jacobian, contact_jacobian, factorisation;
   int reused = 0; ///< Newton iterations that kept the last factorisation
   /// reaction of each clamped boundary at the last residual evaluation
@@ -51,7 +48,7 @@ private:
   FieldwiseConvergence& _monitor;
   KSP _ksp;
   bool _reuse;
-  Mat _Jc = nullptr;
+  dolfinx::la::petsc::Matrix _Jc;
   std::vector<double> _Jc_last; ///< this rank's values of the last J_contact
   double _k_last = -1.0;
 };

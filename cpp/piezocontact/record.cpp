@@ -7,8 +7,6 @@ namespace piezocontact
 {
 namespace
 {
-using Clock = std::chrono::steady_clock;
-
 int rank_of(MPI_Comm comm)
 {
   int rank;
@@ -17,13 +15,11 @@ int rank_of(MPI_Comm comm)
 }
 
 /// Run `action`, adding its wall time to `s`
-template <typename S, typename F>
-void timed(S& s, F&& action)
+template <typename F>
+void timed(OperationStats& s, const std::string& task, F&& action)
 {
-  const auto t0 = Clock::now();
+  ScopedTimer timer(s, task);
   action();
-  s.seconds += std::chrono::duration<double>(Clock::now() - t0).count();
-  ++s.count;
 }
 
 json fields_json(const std::map<std::string, FieldNorms>& norms, double FieldNorms::*member)
@@ -132,7 +128,7 @@ void Record::read_states(const States& states) const
 
 void Record::write_summary()
 {
-  timed(_summaries,
+  timed(_summaries, "summary",
         [&]
         {
           collectively(_problem.comm, rank_of(_problem.comm) == 0,
@@ -161,7 +157,7 @@ StepState Record::write_checkpoint(StepState s, const StateViews& states)
   s.file = "checkpoint/" + numbered("state_%06d.npy", s.step);
   if (rank_of(_problem.comm) == 0)
     std::filesystem::create_directories(_dir / "checkpoint");
-  timed(_checkpoints, [&] { _state_file.write(_dir / s.file, states); });
+  timed(_checkpoints, "checkpoint", [&] { _state_file.write(_dir / s.file, states); });
   return s;
 }
 
@@ -220,7 +216,7 @@ json Record::accept(StepState state, const SolveReport& report, const StateViews
   const StepState previous = _state;
   try
   {
-    timed(_step_files, [&] { _writer->write_step(state.step, report.t, final); });
+    timed(_step_files, "step files", [&] { _writer->write_step(state.step, report.t, final); });
     _state = write_checkpoint(state, states);
     _summary["steps"].push_back(step);
     _summary["checkpoint"] = _state.to_json();
@@ -304,9 +300,8 @@ void Record::interrupt(int signum, const json& timing)
 
 json Record::output_timing() const
 {
-  auto stats = [](const Stats& s) { return json{{"count", s.count}, {"seconds", s.seconds}}; };
-  return {{"step_files", stats(_step_files)},
-          {"checkpoint", stats(_checkpoints)},
-          {"summary", stats(_summaries)}};
+  return {{"step_files", _step_files.to_json()},
+          {"checkpoint", _checkpoints.to_json()},
+          {"summary", _summaries.to_json()}};
 }
 } // namespace piezocontact

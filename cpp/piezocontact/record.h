@@ -14,9 +14,9 @@
 #include "output.h"
 #include "problem.h"
 #include "settings.h"
+#include "timing.h"
 
 #include <array>
-#include <chrono>
 #include <filesystem>
 #include <functional>
 #include <map>
@@ -114,10 +114,6 @@ private:
   ContactGeometry _contact;
   StateFile _state_file;
   std::optional<Writer> _writer;
-  struct Stats
-  {
-    int count = 0;
-    double seconds = 0.0;
-  } _step_files, _checkpoints, _summaries;
+  OperationStats _step_files, _checkpoints, _summaries;
 };
 } // namespace piezocontact

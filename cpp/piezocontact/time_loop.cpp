@@ -3,7 +3,6 @@
 #include "nonlinear_system.h"
 #include "step_control.h"
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <dolfinx/fem/assembler.h>
@@ -18,12 +17,6 @@ namespace piezocontact
 using namespace dolfinx;
 namespace
 {
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point t0)
-{
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 std::string sci(double v)
 {
@@ -70,8 +63,6 @@ void set_field_splits(KSP ksp, const Problem& problem)
   }
 }
 
-json stats(const OperationStats& s) { return {{"count", s.count}, {"seconds", s.seconds}}; }
-
 double callback_seconds(const NonlinearSystem& sys)
 {
   return sys.residual.seconds + sys.jacobian.seconds + sys.contact_jacobian.seconds
@@ -89,10 +80,10 @@ json timing(const NonlinearSystem& sys, double total_s, double newton_s,
           {"assembly_s", sys.residual.seconds + sys.jacobian.seconds + sys.contact_jacobian.seconds},
           {"solve_s", sys.factorisation.seconds + solves},
           {"operations",
-           {{"residual", stats(sys.residual)},
-            {"jacobian", stats(sys.jacobian)},
-            {"contact_jacobian", stats(sys.contact_jacobian)},
-            {"factorisation", stats(sys.factorisation)},
+           {{"residual", sys.residual.to_json()},
+            {"jacobian", sys.jacobian.to_json()},
+            {"contact_jacobian", sys.contact_jacobian.to_json()},
+            {"factorisation", sys.factorisation.to_json()},
             {"triangular_solve", {{"count", newton_its}, {"seconds", solves}}},
             {"reused_factorisation", sys.reused}}}};
 }
@@ -102,7 +93,7 @@ json timing(const NonlinearSystem& sys, double total_s, double newton_s,
 json run(Problem& problem, const RunSettings& settings, const std::filesystem::path& out_dir,
          json summary, bool resume, bool progress, const StepObserver& observer)
 {
-  const auto t_start = Clock::now();
+  const common::Timer total("piezocontact: run");
   const MPI_Comm comm = problem.comm;
   Record record(problem, settings, out_dir, std::move(summary), resume, progress, observer);
   const auto& imap = *problem.W->dofmap()->index_map;
@@ -115,8 +106,8 @@ json run(Problem& problem, const RunSettings& settings, const std::filesystem::p
   nls::petsc::NewtonSolver newton(comm);
   NonlinearSystem system(problem, monitor, newton.get_krylov_solver().ksp(),
                          settings.reuse_factorisation);
-  newton.setF([&system](const Vec x, Vec r) { system.F(x, r); }, system.b);
-  newton.setJ([&system](const Vec x, Mat A) { system.J(x, A); }, system.A);
+  newton.setF([&system](const Vec x, Vec r) { system.F(x, r); }, system.b.vec());
+  newton.setJ([&system](const Vec x, Mat A) { system.J(x, A); }, system.A.mat());
   newton.set_form(
       [](Vec x)
       {
@@ -171,7 +162,7 @@ json run(Problem& problem, const RunSettings& settings, const std::filesystem::p
     record.read_states({xp, x_prev2, xJ});
     std::copy(xJ.begin(), xJ.end(), xa.begin());
     problem.model.constants.at("k")->value[0] = state.k_J;
-    system.J(x, system.A);
+    system.J(x, system.A.mat());
     std::copy(xp.begin(), xp.end(), xa.begin());
     steps.restore(state.nominal, state.t, state.k, state.k_last, state.step);
     int rank;
@@ -181,7 +172,7 @@ json run(Problem& problem, const RunSettings& settings, const std::filesystem::p
                   state.t);
   }
   else
-    system.J(x, system.A); // initial scaling D (and first factorisation)
+    system.J(x, system.A.mat()); // initial scaling D (and first factorisation)
   record.begin(state_now(), states());
 
   const double callbacks_before = callback_seconds(system);
@@ -189,7 +180,7 @@ json run(Problem& problem, const RunSettings& settings, const std::filesystem::p
   int newton_its = 0;
   const auto run_timing = [&]
   {
-    return timing(system, seconds_since(t_start), newton_s,
+    return timing(system, total.elapsed()[0], newton_s,
                   callback_seconds(system) - callbacks_before, newton_its);
   };
   while (!steps.done() and !(signal = agreed_interrupt(comm)))
@@ -204,10 +195,10 @@ json run(Problem& problem, const RunSettings& settings, const std::filesystem::p
     problem.x->x()->scatter_fwd();
     monitor.history.clear();
     const int f0 = system.factorisation.count;
-    const auto t0 = Clock::now();
+    common::Timer newton_timer("piezocontact: Newton solve");
     const auto [its, converged] = newton.solve(x);
     problem.x->x()->scatter_fwd();
-    newton_s += seconds_since(t0);
+    newton_s += newton_timer.stop();
     newton_its += its;
     SolveReport report{t, k, its, system.factorisation.count - f0, newton.krylov_iterations(),
                        monitor.history, system.reactions};

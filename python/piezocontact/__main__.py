@@ -1,6 +1,7 @@
 """python3 -m piezocontact: the command line of piezo-contact, on JIT-compiled
 forms, plus --engine cpp|reference (default cpp)."""
 
+import logging
 import sys
 
 from mpi4py import MPI
@@ -23,6 +24,9 @@ def main(argv):
             print(f"error: --engine {engine}: expected one of {', '.join(api.ENGINES)}",
                   file=sys.stderr)
         return cpp.exit_config_error
+    # the JIT's compiler (distutils, via cffi) lowers the root logger to
+    # INFO and logs every compiler command: a command line shows warnings only
+    logging.getLogger().addFilter(lambda record: record.levelno >= logging.WARNING)
     keep = []
     return cpp.command_line("python3 -m piezocontact", args, MPI.COMM_WORLD,
                             api.ENGINES[engine], model.factory(keep=keep),

@@ -108,6 +108,8 @@ class JitModel:
         self.F, self.J, self.J_contact = fem.form([F, self.J_ufl, J_state])
         self.contact_force = [fem.form(pf.contact_force(self.x, ds, self.data, i, law))
                               for i in range(msh.geometry.dim)]
+        self.boundary_measures = {name: fem.form(1.0 * ds(tag))
+                                  for name, tag in named.tag_of.items()}
 
         u, phi = ufl.split(self.x)
         u_prev, _ = ufl.split(self.x_prev)
@@ -138,6 +140,7 @@ class JitModel:
         if self.exact:
             m.u_exact, m.phi_exact = (e._cpp_object for e in self.exact)
         m.squared_errors = self.squared_errors
+        m.boundary_measures = self.boundary_measures
         return m
 
 
