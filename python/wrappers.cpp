@@ -310,14 +310,16 @@ PYBIND11_MODULE(cpp, m)
   m.def(
       "command_line",
       [](const std::string& program, const std::vector<std::string>& args, MPICommWrapper comm,
-         const std::string& solver, const PyModelFactory& make_model,
-         const std::optional<PyEngine>& loop)
+         const std::vector<std::tuple<std::string, std::string, PyModelFactory,
+                                      std::optional<PyEngine>>>& choices)
       {
         silence_hdf5_errors();
-        return command_line(program, args, comm.get(), solver, factory(make_model),
-                            engine(loop));
+        std::vector<EngineChoice> engines;
+        for (const auto& [name, solver, make_model, loop] : choices)
+          engines.push_back({name, solver, factory(make_model), engine(loop)});
+        return command_line(program, args, comm.get(), engines);
       },
-      py::arg("program"), py::arg("args"), py::arg("comm"), py::arg("solver"),
-      py::arg("make_model"), py::arg("engine") = py::none(),
-      "The command line of piezo-contact; returns the exit code");
+      py::arg("program"), py::arg("args"), py::arg("comm"), py::arg("engines"),
+      "The command line of piezo-contact with --engine choosing among "
+      "(name, solver, model factory, time loop or None); returns the exit code");
 }

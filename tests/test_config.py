@@ -8,7 +8,7 @@ import time
 
 import pytest
 from bad_inputs import CASES, materialise
-from conftest import ENGINES, ENV, command
+from conftest import ENGINES, ENV, SQUARE, command
 
 
 def messages(case, tmp_path, np_=1):
@@ -44,3 +44,14 @@ def test_bad_input_under_mpi_exits_promptly(case, tmp_path):
     for solver, (message, seconds) in messages(case, tmp_path, np_=2).items():
         assert CASES[case][2] in message
         assert seconds < 60, (solver, seconds)
+
+
+def test_unknown_engine_is_refused(tmp_path):
+    """--engine is parsed by the C++ command line, with the other flags."""
+    proc = subprocess.run(command("cpp-jit") + ["--engine", "fast", "--config", str(SQUARE),
+                                                "--output", str(tmp_path / "out")],
+                          capture_output=True, text=True, env=ENV, timeout=120)
+    assert proc.returncode == 2
+    assert proc.stderr.splitlines()[-1] == "error: --engine fast: not one of the engines above"
+    assert "--engine cpp|reference (default cpp)" in proc.stderr
+    assert not (tmp_path / "out").exists()

@@ -22,8 +22,8 @@ int main(int argc, char* argv[])
   PetscInitialize(&argc, &argv, nullptr, nullptr);
   piezocontact::silence_hdf5_errors(); // failures are reported in one line
   const std::vector<std::string> args(argv + 1, argv + argc);
-  const int code = piezocontact::command_line("piezo-contact", args, MPI_COMM_WORLD, "cpp",
-                                              piezocontact::app::compiled_model);
+  const int code = piezocontact::command_line(
+      "piezo-contact", args, MPI_COMM_WORLD, {{"cpp", "cpp", piezocontact::app::compiled_model}});
   PetscFinalize();
   return code;
 }

@@ -3,6 +3,7 @@
 #include "mesh.h"
 #include "output.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
@@ -16,11 +17,19 @@ const char* usage
     = "usage: %1$s --config FILE --output DIR [--set KEY.PATH=VALUE ...] [--quiet]\n"
       "       %1$s --output DIR --resume [--set time.T=... --set time.steps=...] [--quiet]\n";
 
-std::string usage_of(const std::string& program)
+std::string usage_of(const std::string& program, const std::vector<EngineChoice>& engines)
 {
   char buf[512];
   std::snprintf(buf, sizeof(buf), usage, program.c_str());
-  return buf;
+  std::string out = buf;
+  if (engines.size() > 1)
+  {
+    out += "       --engine " + engines[0].name;
+    for (std::size_t i = 1; i < engines.size(); ++i)
+      out += "|" + engines[i].name;
+    out += " (default " + engines[0].name + ")\n";
+  }
+  return out;
 }
 } // namespace
 
@@ -147,14 +156,14 @@ json run_config(const RunRequest& request, MPI_Comm comm, const ModelFactory& ma
 }
 
 int command_line(const std::string& program, const std::vector<std::string>& args,
-                 MPI_Comm comm, const std::string& solver, const ModelFactory& make_model,
-                 const Engine& engine)
+                 MPI_Comm comm, const std::vector<EngineChoice>& engines)
 {
   int rank;
   MPI_Comm_rank(comm, &rank);
   std::string config_path, output_dir;
   std::vector<std::string> overrides;
   bool quiet = false, resume = false;
+  std::string engine_name = engines.at(0).name;
   for (std::size_t i = 0; i < args.size(); ++i)
   {
     const std::string& a = args[i];
@@ -169,29 +178,36 @@ int command_line(const std::string& program, const std::vector<std::string>& arg
       quiet = true;
     else if (a == "--resume")
       resume = true;
+    else if (a == "--engine" and has_value and engines.size() > 1)
+      engine_name = args[++i];
     else if (a == "-h" or a == "--help")
     {
       if (rank == 0)
-        std::cout << usage_of(program);
+        std::cout << usage_of(program, engines);
       return 0;
     }
   }
-  const char* bad_args = nullptr;
-  if (output_dir.empty())
+  const auto chosen = std::find_if(engines.begin(), engines.end(),
+                                   [&](const auto& e) { return e.name == engine_name; });
+  std::string bad_args;
+  if (chosen == engines.end())
+    bad_args = "--engine " + engine_name + ": not one of the engines above";
+  else if (output_dir.empty())
     bad_args = "--output is required";
   else if (resume and !config_path.empty())
     bad_args = "--resume takes the config from DIR/summary.json: no --config";
   else if (!resume and config_path.empty())
     bad_args = "--config is required";
-  if (bad_args)
+  if (!bad_args.empty())
   {
     if (rank == 0)
-      std::cerr << usage_of(program) << "error: " << bad_args << "\n";
+      std::cerr << usage_of(program, engines) << "error: " << bad_args << "\n";
     return exit_config_error;
   }
 
   const InterruptScope interrupts;
   int code = 0;
+  const auto& [name, solver, make_model, engine] = *chosen;
   try
   {
     RunRequest request{json(), output_dir, config_path, solver, !quiet};

@@ -54,12 +54,23 @@ std::pair<json, json> resumable_summary(const std::filesystem::path& dir,
 /// the same ConfigError)
 void prepare_output(const std::filesystem::path& dir, const std::string& source, MPI_Comm comm);
 
+/// A way of running that a command line offers: `--engine NAME` picks it
+/// when there are several (the first is the default); `solver` is recorded
+/// in the summary
+struct EngineChoice
+{
+  std::string name;
+  std::string solver;
+  ModelFactory make_model;
+  Engine engine = nullptr; ///< the library's time loop if empty
+};
+
 /// The command line, arguments without the program name:
 ///   --config FILE --output DIR [--set KEY=VALUE ...] [--quiet]
 ///   --output DIR --resume [--set time.T=.. --set time.steps=..] [--quiet]
+///   [--engine NAME] when several engines are given
 /// Prints one line per error; returns the exit code (0, 2 bad input,
 /// 3 Newton failure, 4 output error, 128 + signal).
 int command_line(const std::string& program, const std::vector<std::string>& args,
-                 MPI_Comm comm, const std::string& solver, const ModelFactory& make_model,
-                 const Engine& engine = nullptr);
+                 MPI_Comm comm, const std::vector<EngineChoice>& engines);
 } // namespace piezocontact
