@@ -7,7 +7,7 @@ checkpoint, summary). With --baseline BUILD, the same runs of another build
 
     /usr/bin/python3 benchmarks/output_cost.py                       # prints markdown
     /usr/bin/python3 benchmarks/output_cost.py --sizes 128 256 --baseline /tmp/old/build
-    /usr/bin/python3 benchmarks/output_cost.py --solver python --sizes 64 128
+    /usr/bin/python3 benchmarks/output_cost.py --solver cpp-jit --sizes 64 128
     ... --write docs/benchmarks.md   # (re)places its section there
 
 Each configuration is run --repeat times and the fastest run is kept (the
@@ -29,9 +29,10 @@ HEADING = "## Output cost per step"
 
 
 def command(solver, build):
+    """The executable, or the C++ loop from Python (that build's package)."""
     if solver == "cpp":
         return [str(Path(build) / "piezo-contact")]
-    return ["/usr/bin/python3", str(ROOT / "demos" / "piezo_contact.py")]
+    return ["env", f"PYTHONPATH={Path(build) / 'python'}", "/usr/bin/python3", "-m", "piezocontact"]
 
 
 def run(cmd, n, xdmf):
@@ -58,7 +59,7 @@ def ms_per_step(seconds, steps):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--sizes", type=int, nargs="+", default=[128, 256])
-    ap.add_argument("--solver", choices=["cpp", "python"], default="cpp")
+    ap.add_argument("--solver", choices=["cpp", "cpp-jit"], default="cpp")
     ap.add_argument("--build", default=str(ROOT / "build"))
     ap.add_argument("--baseline", help="another build directory to compare with (C++)")
     ap.add_argument("--baseline-name", default="another build",

@@ -1,5 +1,6 @@
-"""Example 2, the contactor: gmsh meshes with named boundaries, read by both
-solvers; C++/Python agreement; the pictures' data against the solver's."""
+"""Example 2, the contactor: gmsh meshes with named boundaries, read by the
+C++ core; the three engines agree at every step (serial and mpirun -n 2);
+the pictures' data against the solver's."""
 
 import importlib.util
 import math
@@ -9,7 +10,7 @@ import sys
 import numpy as np
 import pytest
 import ufl
-from conftest import ENV, ROOT, run_solver
+from conftest import ENGINES, ENV, ROOT, run_solver
 from dolfinx import fem
 from mpi4py import MPI
 from piezocontact import cpp
@@ -20,6 +21,7 @@ CONTACTOR = ROOT / "demos" / "contactor.json"
 VARIANT = ROOT / "demos" / "contactor_in_contact.json"
 SMALL = ["mesh.size=0.2", "time.steps=10", "output.nodal=all"]
 TOL = 1e-8
+PAIRS = [("cpp", "cpp-jit", 1e-12), ("cpp", "reference", TOL)]  # as in test_agreement
 
 
 def polygon(script):
@@ -41,8 +43,7 @@ def edge_lengths(points, edges):
 @pytest.fixture(scope="module")
 def variant_runs(tmp_path_factory):
     base = tmp_path_factory.mktemp("contactor")
-    return {s: (run_solver(s, base / s, SMALL, config=VARIANT)[0], base / s)
-            for s in ("cpp", "reference")}
+    return {s: (run_solver(s, base / s, SMALL, config=VARIANT)[0], base / s) for s in ENGINES}
 
 
 @pytest.mark.parametrize("name", ["contactor", "square"])
@@ -73,17 +74,31 @@ def test_both_engines_see_the_named_boundaries(variant_runs):
                 (solver, name)
 
 
-def test_cpp_and_reference_agree_on_the_contactor(variant_runs):
-    (cpp, cpp_dir), (py, py_dir) = variant_runs["cpp"], variant_runs["reference"]
-    assert cpp["dofs"] == py["dofs"]
-    for d in compare.probe_differences(cpp, py):
-        assert d["u"] < TOL and d["phi"] < TOL, d
-    diffs = compare.field_differences(cpp_dir, py_dir, py)
+def agree(run_a, run_b, tol):
+    """Probes, fields, contact force and penetration at every step."""
+    (a, a_dir), (b, b_dir) = run_a, run_b
+    assert a["dofs"] == b["dofs"]
+    for d in compare.probe_differences(a, b):
+        assert d["u"] < tol and d["phi"] < tol, d
+    diffs = compare.field_differences(a_dir, b_dir, b)
     assert sorted(diffs) == list(range(1, 11))
     for step, d in diffs.items():
-        assert d["u"] < TOL and d["phi"] < TOL, (step, d)
-    for a, b in zip(cpp["steps"], py["steps"]):
-        assert np.allclose(a["contact_force"], b["contact_force"], rtol=TOL, atol=0)
+        assert d["u"] < tol and d["phi"] < tol, (step, d)
+    for sa, sb in zip(a["steps"], b["steps"]):
+        assert np.allclose(sa["contact_force"], sb["contact_force"], rtol=tol, atol=0)
+        assert sa["max_penetration"] == pytest.approx(sb["max_penetration"], rel=tol)
+
+
+@pytest.mark.parametrize("a,b,tol", PAIRS)
+def test_engines_agree_on_the_contactor(variant_runs, a, b, tol):
+    agree(variant_runs[a], variant_runs[b], tol)
+
+
+@pytest.mark.parametrize("solver", ENGINES)
+def test_contactor_under_mpi_matches_serial(solver, variant_runs, tmp_path):
+    summary, _ = run_solver(solver, tmp_path, SMALL, config=VARIANT, np_=2)
+    assert summary["mpi_size"] == 2
+    agree((summary, tmp_path), variant_runs[solver], TOL)
 
 
 def test_every_step_converged_in_both_fields(variant_runs):
