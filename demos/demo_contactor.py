@@ -60,7 +60,9 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__)
     ap.add_argument("--output", default=str(ROOT / "out" / "contactor"))
     ap.add_argument("--build", default=os.environ.get("PIEZO_BUILD", str(ROOT / "build")))
-    ap.add_argument("--np", type=int, default=1, help="MPI processes for both solvers")
+    ap.add_argument("--np", type=int, default=1,
+                    help="MPI processes (mpirun -n) of each run: the executable and the "
+                         "reference engine")
     ap.add_argument("--set", action="append", default=[], metavar="KEY.PATH=VALUE")
     args = ap.parse_args()
     answers, worst = {}, 0.0

@@ -23,7 +23,7 @@
 #
 # and prints the probe values side by side and the relative L2 difference of
 # the u and phi fields at the final time. Extra arguments are passed to both
-# solvers, e.g.
+# engines, e.g.
 #
 #     /usr/bin/python3 demos/demo_square.py --set mesh.n=64 --set time.steps=64
 
@@ -43,7 +43,9 @@ def main():
     ap.add_argument("--config", default=str(HERE / "square.json"))
     ap.add_argument("--output", default=str(ROOT / "out" / "square"))
     ap.add_argument("--build", default=os.environ.get("PIEZO_BUILD", str(ROOT / "build")))
-    ap.add_argument("--np", type=int, default=1, help="MPI processes for both solvers")
+    ap.add_argument("--np", type=int, default=1,
+                    help="MPI processes (mpirun -n) of each run: the executable and the "
+                         "reference engine")
     ap.add_argument("--set", action="append", default=[], metavar="KEY.PATH=VALUE")
     args = ap.parse_args()
     summaries = runs.run_both(args.config, args.output, args.set, args.build, args.np)

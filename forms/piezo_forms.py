@@ -6,9 +6,11 @@ normal-compliance foundation, plane strain, unknowns x = (u, phi).
 
 This module is the single source of truth for every term. It is used twice:
   * `piezo_contact.ufl` calls it with UFL Coefficients/Constants, and ffcx
-    compiles the result into C kernels for the C++ solver;
-  * the Python twin calls it with dolfinx Functions/Constants, and dolfinx
-    JIT-compiles the very same expressions.
+    compiles the result into C kernels for the executable `piezo-contact`;
+  * the Python package (JIT, `python/piezocontact/model.py`) calls it with
+    dolfinx Functions/Constants, and dolfinx JIT-compiles the very same
+    expressions, solved by the C++ loop (`python3 -m piezocontact`) or by
+    the reference engine (`--engine reference`).
 All material data, loads and the time step are Constants (runtime data).
 Changing the law `p` or adding a term is an edit here (and a rebuild of the
 executable); from Python, the law can also be passed in (`law=`).

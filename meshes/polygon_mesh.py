@@ -1,4 +1,4 @@
-"""Mesh a polygon with gmsh and write what both solvers read:
+"""Mesh a polygon with gmsh and write what the C++ core reads:
   NAME.xdmf (+ .h5)       the triangle mesh ("mesh") and facet tags ("facets")
   NAME.boundaries.json    {"boundaries": {name: facet tag}, ...}
 Each edge of the polygon belongs to a named boundary (a gmsh physical group);

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Set up (install what is missing, build), then reproduce a verification
 # study (docs/verification.md):
-#   bash scripts/verify.sh figure3 [--finest 256] [--solver python]
+#   bash scripts/verify.sh figure3 [--finest 256] [--solver reference]
 #       the paper's Figure 3 on example 1 -> out/convergence/
 #   bash scripts/verify.sh manufactured [--finest 128] [--solver cpp]
 #       manufactured-solution rates in h and k -> out/manufactured/

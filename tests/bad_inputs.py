@@ -1,7 +1,7 @@
 #!/usr/bin/python3
-"""Every kind of bad input the solvers must refuse, with (part of) the
-message both give. Used by tests/test_config.py; run it to regenerate the
-table of messages in docs/errors.md from real runs of the C++ solver:
+"""Every kind of bad input the engines must refuse, with (part of) the
+message all three give. Used by tests/test_config.py; run it to regenerate
+the table of messages in docs/errors.md from real runs of the executable:
 
     /usr/bin/python3 tests/bad_inputs.py --write docs/errors.md
 """
@@ -101,17 +101,20 @@ def materialise(case, tmp):
 
 def main():
     rows = ["# What bad input gets\n",
-            "Both solvers (`build/piezo-contact`, `demos/piezo_contact.py`) refuse each of "
-            "these before computing anything, with exit code 2 and the same one-line "
-            "message naming the file, the key and the value (for malformed JSON the "
-            "parsers' own descriptions differ after the line and column). Checked by "
-            "`tests/test_config.py`; this table is regenerated from real runs by "
+            "All three engines (`piezo-contact`, `python3 -m piezocontact`, "
+            "`python3 -m piezocontact --engine reference`) refuse each of these before "
+            "computing anything, with exit code 2 and the same one-line message naming "
+            "the file, the key and the value: one validator, in the C++ core, checks the "
+            "input for all three. Checked by `tests/test_config.py`; this table is "
+            "regenerated from real runs by "
             "`/usr/bin/python3 tests/bad_inputs.py --write docs/errors.md`.\n",
-            "A Newton failure is retried with the time step halved (up to "
+            "In the C++ loop (`piezo-contact`, `python3 -m piezocontact`) a Newton failure "
+            "is retried with the time step halved (up to "
             "`solver.newton.max_step_halvings`, default 4); if that fails too, the run "
             "stops with exit code 3, the message names the time, the step and both "
             "relative residuals, and summary.json (status \"failed\", with its events) "
-            "and the XDMF file keep every step computed before.\n",
+            "and the XDMF file keep every step computed before. The reference engine "
+            "has fixed steps: it stops at the first failure, with exit code 3.\n",
             "A write error (a full disk) stops the run with exit code 4 and one line, "
             "`error: cannot write FILE: No space left on device`; summary.json says "
             "\"failed\" with that error when there is room for it, and every earlier step "
@@ -120,10 +123,11 @@ def main():
             "summary.json (`DIR/summary.json: cannot resume: no such file`), a completed run "
             "(`cannot resume: status = \"completed\"`, unless extended to a later `time.T` at "
             "the same step: `--set time.T=... --set time.steps=...`, the only keys `--resume` "
-            "takes), the other solver's run (`cannot resume: solver = \"python\", this is "
-            "the \"cpp\" solver`) and `--config` beside it. Checked by "
+            "takes), another engine's run (`cannot resume: solver = \"cpp-jit\", this is "
+            "the \"cpp\" solver`) and `--config` beside it; the reference engine resumes "
+            "no run (`cannot resume: the reference engine runs whole`). Checked by "
             "`tests/test_interrupts.py`.\n",
-            "| bad input | message (C++ solver, config `demos/...` or a scratch file) |",
+            "| bad input | message (`piezo-contact`, config `demos/...` or a scratch file) |",
             "|---|---|"]
     exe = ROOT / "build" / "piezo-contact"
     for case in CASES:

@@ -1,4 +1,6 @@
-// Per-field Newton convergence, the rule of demos/piezocontact/fieldwise.py.
+// Per-field Newton convergence test of the C++ time loop (the reference
+// engine has a test of its own, on the increments:
+// python/piezocontact/reference.py).
 //
 // In SI units the u-block of the Jacobian is ~1e11 and the phi-block ~1e-10,
 // so one residual norm sees only u. Both fields are measured in the

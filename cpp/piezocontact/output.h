@@ -1,5 +1,6 @@
-// Run outputs, the layout of demos/piezocontact/output.py. Every file is
-// complete whenever a step has been reported, whatever instant a kill lands:
+// Run outputs, one layout for every engine (written through Record). Every
+// file is complete whenever a step has been reported, whatever instant a
+// kill lands:
 //   DIR/summary.json             the run's record (write-then-rename each step)
 //   DIR/solution.xdmf            index for ParaView (write-then-rename each step)
 //   DIR/solution.h5              the mesh, written once

@@ -1,7 +1,7 @@
 // Backward Euler steps of the config's size k = T/steps; when Newton fails,
 // the step is retried with k halved (at most max_halvings times in a row)
-// and the smaller k is kept until the next nominal time t_n = n k. The same
-// rule as StepControl in demos/piezocontact/twin.py.
+// and the smaller k is kept until the next nominal time t_n = n k. Used by
+// the C++ time loop; the reference engine takes fixed steps and never halves.
 #pragma once
 
 #include <string>
