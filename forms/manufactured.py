@@ -87,6 +87,12 @@ def loads(y, ds, data, law=pf.p):
     return body + surface + pf.contact_term(u, w, n, ds, data, law)
 
 
+def applied_loads(y, ds, data, law=pf.p):
+    """Every load of a manufactured run (the config's are zero): the scale
+    of its forces."""
+    return pf.applied_loads(y, ds, data) + loads(y, ds, data, law)
+
+
 def residual(x, x_prev, y, ds, data, law=pf.p):
     """The model's residual with the loads of the exact solution. Its
     Jacobian is piezo_forms' (the loads do not depend on x)."""

@@ -88,18 +88,24 @@ def residual(x, x_prev, y, ds, data, law=p):
 
     # (3.3): viscous + elastic + piezoelectric coupling = body force
     F = ufl.inner(stress_voigt(u, velocity(u, u_prev, data), phi, data), strain_voigt(w)) * dx
-    F -= ufl.inner(data["f0"], w) * dx
     # (3.4): permittivity - piezoelectric coupling = free charge, with the
     # right-hand side of (2.19) as the paper writes it
     F += ufl.inner(ufl.dot(data["beta"], ufl.grad(phi)), ufl.grad(psi)) * dx
     F -= ufl.inner(ufl.dot(data["e"], strain_voigt(u)), ufl.grad(psi)) * dx
-    F -= data["q0"] * psi * dx
+    return F - applied_loads(y, ds, data) + contact_term(u, w, n, ds, data, law)
 
+
+def applied_loads(y, ds, data):
+    """The loads of (3.3)-(3.4) as a linear form in the test function y: body
+    force, free charge, tractions and surface charges. Assembled alone, its
+    size is the scale of the forces in play (the solvers' force balance)."""
+    w, psi = ufl.split(y)
+    dx = ufl.dx(domain=y.ufl_domain())
+    L = ufl.inner(data["f0"], w) * dx + data["q0"] * psi * dx
     for s in range(MAX_BOUNDARIES):
         traction = ufl.as_vector([data["fF"][s, 0], data["fF"][s, 1]])
-        F -= ufl.inner(traction, w) * ds(s + 1)
-        F -= data["qF"][s] * psi * ds(s + 1)
-    return F + contact_term(u, w, n, ds, data, law)
+        L += ufl.inner(traction, w) * ds(s + 1) + data["qF"][s] * psi * ds(s + 1)
+    return L
 
 
 def contact_term(u, w, n, ds, data, law=p):

@@ -15,6 +15,9 @@ from dolfinx.io import gmshio
 from mpi4py import MPI
 
 
+MAX_TRIANGLES = 5e6
+
+
 def build_polygon(points, edge_names, size):
     """Add the polygon to the current gmsh model and mesh it. edge_names[i]
     names the edge from points[i] to points[i+1] (closing the loop)."""
@@ -71,6 +74,13 @@ def main(points, edge_names, description):
     args = ap.parse_args()
     if not args.size > 0:
         sys.exit(f"error: --size {args.size}: must be > 0")
+    # refuse what would take hours and all the memory, before gmsh tries
+    area = 0.5 * abs(sum(x0 * y1 - x1 * y0 for (x0, y0), (x1, y1)
+                         in zip(points, points[1:] + points[:1])))
+    estimate = area / (0.433 * args.size ** 2)  # equilateral triangles of side size
+    if estimate > MAX_TRIANGLES:
+        sys.exit(f"error: --size {args.size:g}: about {estimate:.2g} triangles "
+                 f"(at most {MAX_TRIANGLES:.0e})")
     mesh = write_mesh(points, edge_names, args.size, args.output)
     cells = mesh.topology.index_map(2).size_global
     if MPI.COMM_WORLD.rank == 0:

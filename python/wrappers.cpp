@@ -5,6 +5,7 @@
 #include <caster_petsc.h>
 #include <dolfinx/fem/DirichletBC.h>
 #include <piezocontact/config.h>
+#include <piezocontact/diagnostics.h>
 #include <piezocontact/driver.h>
 #include <piezocontact/mesh.h>
 #include <piezocontact/output.h>
@@ -97,7 +98,8 @@ void declare_model(py::module& m)
       .def_readwrite("u_exact", &Model::u_exact)
       .def_readwrite("phi_exact", &Model::phi_exact)
       .def_readwrite("squared_errors", &Model::squared_errors)
-      .def_readwrite("boundary_measures", &Model::boundary_measures);
+      .def_readwrite("boundary_measures", &Model::boundary_measures)
+      .def_readwrite("L", &Model::L);
 }
 
 void declare_settings(py::module& m)
@@ -120,6 +122,10 @@ void declare_settings(py::module& m)
       .def_readonly("output", &RunSettings::output);
 }
 
+using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+std::span<const double> view(const Array& a) { return {a.data(), std::size_t(a.size())}; }
+
 void declare_problem(py::module& m)
 {
   py::class_<Problem>(m, "Problem", "A Model with its Dirichlet conditions (problem.h)")
@@ -136,12 +142,23 @@ void declare_problem(py::module& m)
       .def_readonly("clamped_dofs", &Problem::clamped_dofs)
       .def("set_time", &Problem::set_time, py::arg("t"), py::arg("k"))
       .def("update_fields", &Problem::update_fields)
-      .def("errors", &Problem::errors);
+      .def("errors", &Problem::errors)
+      .def(
+          "force_balance",
+          [](const Problem& p, const Array& r) { return p.force_balance(view(r)); },
+          py::arg("r"), "The balance of forces in a residual (owned entries, before its BC rows)");
+  py::class_<ForceBalance>(m, "ForceBalance", "What a residual says about equilibrium")
+      .def_readonly("unbalanced", &ForceBalance::unbalanced)
+      .def_readonly("supported", &ForceBalance::supported);
+  m.def("contact_force", &contact_force, py::arg("problem"),
+        "Resultant force of the foundation on the body at the current x");
+  m.def("force_imbalance",
+        py::overload_cast<const Problem&, const ForceBalance&, const std::vector<double>&>(
+            &force_imbalance),
+        py::arg("problem"), py::arg("balance"), py::arg("contact_force"),
+        "What Newton left on the free u dofs relative to the forces in play");
+  m.attr("balance_tolerance") = balance_tolerance;
 }
-using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
-
-std::span<const double> view(const Array& a) { return {a.data(), std::size_t(a.size())}; }
-
 /// Interrupted crosses to Python with (signum, steps, t), so that an engine
 /// written in Python can let it through to the driver
 template <typename F>

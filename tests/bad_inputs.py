@@ -54,7 +54,40 @@ CASES = {
                                  "probes[0] = [2.0,2.0]: outside the mesh"),
     "output directory not writable": (SQUARE, [], "--output /proc/piezo: cannot write there"),
     "malformed JSON": ("BROKEN_JSON", [], "invalid JSON at line 2 column 42: "),
-    "config file missing": ("MISSING", [], "cannot read config file: No such file or directory"),
+    "config file missing": ("MISSING", [], "cannot read: No such file or directory"),
+    "config is a directory": ("DIRECTORY", [], "cannot read: not a regular file"),
+    "number beyond double": ("OVERFLOW", [], "invalid JSON at line 1 column 39: number "
+                             "overflow parsing '1e400' (beyond the range of a double)"),
+    "invalid UTF-8": ("BAD_UTF8", [], "invalid JSON at line 1 column 11: syntax error while "
+                      "parsing value - invalid string: ill-formed UTF-8 byte; last read: "
+                      "'\"\\xff'"),
+    "nesting 100000 deep": ("DEEP", [], "invalid JSON: nested more than 32 levels deep"),
+    "more than 1 MiB": ("HUGE", [], "bytes: more than the 1048576 accepted"),
+    "integer beyond 32 bits": (SQUARE, ["time.steps=4294967297"],
+                               "time.steps = 4294967297: must be <= 1000000"),
+    "Newton iterations beyond 32 bits": (SQUARE, ["solver.newton.max_iterations=2147483648"],
+                                         "solver.newton.max_iterations = 2147483648: "
+                                         "must be <= 1000"),
+    "--set without a key": (SQUARE, ["=3"], "--set '=3': expected key.path=value"),
+    "--set index beyond any list": (SQUARE, ["probes.99999999999999999999=1"],
+                                    "--set probes.99999999999999999999: cannot set "
+                                    "'99999999999999999999' here"),
+    "unknown PETSc type": (SQUARE, ["solver.petsc_options.pc_type=bogus"],
+                           "solver.petsc_options.pc_type = bogus: refused by PETSc: Unable "
+                           "to find requested PC type bogus"),
+    "unknown PETSc type of a sub-solver": (
+        SQUARE, ["solver.petsc_options.pc_type=fieldsplit",
+                 "solver.petsc_options.fieldsplit_phi_pc_type=bogus"],
+        "solver.petsc_options.fieldsplit_phi_pc_type = bogus: refused by PETSc: Unable to "
+        "find requested PC type bogus"),
+    "malformed PETSc number": (SQUARE, ["solver.petsc_options.ksp_type=gmres",
+                                        "solver.petsc_options.ksp_rtol=abc"],
+                               "solver.petsc_options.ksp_rtol = abc: refused by PETSc: Input "
+                               "string abc has no numeric value"),
+    "PETSc option with a dash": (SQUARE, ["solver.petsc_options.-ksp_type=cg"],
+                                 "solver.petsc_options.-ksp_type = cg: not a PETSc option "
+                                 "name (letters, digits and _; no leading dash)"),
+    "output is a file": (SQUARE, [], "cannot write there: it exists and is not a directory"),
     "missing required key": ("NO_CP", [], "contact.c_p: missing required key"),
     "Dirichlet value neither numbers nor \"exact\"": (
         SQUARE, ["boundaries.left.displacement=5"],
@@ -82,11 +115,27 @@ def materialise(case, tmp):
     config, overrides, _ = CASES[case]
     tmp = Path(tmp)
     out = "/proc/piezo" if case == "output directory not writable" else str(tmp / "out")
+    if case == "output is a file":
+        out = str(SQUARE)
     if config == "BROKEN_JSON":
         config = tmp / "broken.json"
         config.write_text('{\n  "mesh": {"type": "unit_square", "n": 4,}\n}\n')
     elif config == "MISSING":
         config = tmp / "nope.json"
+    elif config == "DIRECTORY":
+        config = tmp
+    elif config == "OVERFLOW":
+        config = tmp / "overflow.json"
+        config.write_text('{"mesh": {"type": "unit_square", "n": 1e400}}')
+    elif config == "BAD_UTF8":
+        config = tmp / "utf8.json"
+        config.write_bytes(b'{"mesh": "\xff\xfe"}')
+    elif config == "DEEP":
+        config = tmp / "deep.json"
+        config.write_text('{"a":' * 100000 + "1" + "}" * 100000)
+    elif config == "HUGE":
+        config = tmp / "huge.json"
+        config.write_text(SQUARE.read_text()[:-2] + ', "pad": "' + "x" * (1 << 20) + '"}')
     elif config == "NO_CP":
         cfg = json.loads(SQUARE.read_text())
         del cfg["contact"]["c_p"]

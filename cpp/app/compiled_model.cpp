@@ -63,6 +63,7 @@ Model compiled_model(const NamedMesh& named, const json& cfg)
   };
   m.F = form(manufactured ? *form_manufactured_F : *form_piezo_contact_F, 1);
   m.J = form(*form_piezo_contact_J, 2);
+  m.L = form(manufactured ? *form_manufactured_L : *form_piezo_contact_L, 1);
   m.J_contact = form(*form_piezo_contact_J_contact, 2);
   m.contact_force = {form(*form_piezo_contact_contact_force_x, 0),
                      form(*form_piezo_contact_contact_force_y, 0)};

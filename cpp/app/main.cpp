@@ -18,8 +18,11 @@
 
 int main(int argc, char* argv[])
 {
-  dolfinx::init_logging(argc, argv);
-  PetscInitialize(&argc, &argv, nullptr, nullptr);
+  // The arguments are ours alone (PETSc options belong in the config's
+  // solver.petsc_options): neither PETSc nor the logger sees them
+  int argc0 = 1;
+  dolfinx::init_logging(argc0, argv);
+  PetscInitialize(&argc0, &argv, nullptr, nullptr);
   piezocontact::silence_hdf5_errors(); // failures are reported in one line
   const std::vector<std::string> args(argv + 1, argv + argc);
   const int code = piezocontact::command_line(

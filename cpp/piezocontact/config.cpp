@@ -1,10 +1,12 @@
 #include "config.h"
+#include "json_input.h"
 #include "schema.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 namespace piezocontact
@@ -12,7 +14,7 @@ namespace piezocontact
 using namespace dolfinx;
 namespace
 {
-std::string fmt(const json& v) { return v.dump(); }
+std::string fmt(const json& v) { return printable(v); }
 
 std::string fmt_g(double v)
 {
@@ -23,12 +25,13 @@ std::string fmt_g(double v)
 
 std::string join(const std::string& path, const std::string& key)
 {
-  return path.empty() ? key : path + "." + key;
+  const std::string k = printable(key, 60);
+  return path.empty() ? k : path + "." + k;
 }
 
 [[noreturn]] void fail(const std::string& source, const std::string& what)
 {
-  throw ConfigError(source + ": " + what);
+  throw ConfigError(printable(source, 200) + ": " + what);
 }
 
 // Optimal string alignment distance (swaps of neighbours count 1).
@@ -51,6 +54,19 @@ std::size_t edit_distance(const std::string& a, const std::string& b)
   return d[a.size()][b.size()];
 }
 
+bool is_utf8(const std::string& s)
+{
+  try
+  {
+    (void)json(s).dump();
+    return true;
+  }
+  catch (const json::type_error&)
+  {
+    return false;
+  }
+}
+
 bool is_number(const json& v)
 {
   return v.is_number() and std::isfinite(v.get<double>());
@@ -66,6 +82,8 @@ void check_bounds(const json& v, const json& rule, const std::string& path,
       and x <= rule["exclusive_min"].get<double>())
     fail(source,
          path + " = " + fmt(v) + ": must be > " + fmt(rule["exclusive_min"]));
+  if (rule.contains("max") and x > rule["max"].get<double>())
+    fail(source, path + " = " + fmt(v) + ": must be <= " + fmt(rule["max"]));
 }
 
 bool is_number_list(const json& v, std::size_t n)
@@ -100,6 +118,8 @@ json check(const json& value, const json& rule, const std::string& path,
     fail(source, path + " = " + fmt(value) + ": expected " + expected
                      + (alternative.is_null() ? "" : " or " + fmt(alternative)));
   };
+  if (value.is_string() and !is_utf8(value.get<std::string>()))
+    wrong("text in UTF-8");
 
   if (t == "object")
   {
@@ -137,7 +157,11 @@ json check(const json& value, const json& rule, const std::string& path,
       wrong("an object");
     json out = json::object();
     for (const auto& [k, v] : value.items())
+    {
+      if (!is_utf8(k))
+        fail(source, join(path, k) + ": a name in UTF-8 expected");
       out[k] = check(v, rule["values"], join(path, k), source);
+    }
     return out;
   }
   if (t == "number")
@@ -152,7 +176,11 @@ json check(const json& value, const json& rule, const std::string& path,
     if (!value.is_number_integer())
       wrong("an integer");
     check_bounds(value, rule, path, source);
-    return value;
+    // read as int later: never beyond its range, whatever the schema says
+    const double x = value.get<double>();
+    if (x > std::numeric_limits<int>::max() or x < std::numeric_limits<int>::min())
+      fail(source, path + " = " + fmt(value) + ": beyond the range of a 32-bit integer");
+    return value.get<int>();
   }
   if (t == "boolean")
   {
@@ -235,20 +263,34 @@ void check_symmetric(const Matrix& m, const std::string& path,
     }
 }
 
-void check_spd(const Matrix& m, const std::string& path,
-               const std::string& source, const std::string& why)
+/// Sylvester's criterion (2x2 and 3x3): the leading minors of m scaled to
+/// entries of order 1 (those of 1e-170 I would underflow to 0) are positive
+bool positive_definite(Matrix m)
 {
-  check_symmetric(m, path, source);
-  // Sylvester's criterion on the leading minors (2x2 and 3x3 only)
-  std::vector<double> minors
-      = {m[0][0], m[0][0] * m[1][1] - m[0][1] * m[1][0]};
+  double largest = 0.0;
+  for (const auto& row : m)
+    for (double v : row)
+      largest = std::max(largest, std::abs(v));
+  if (largest == 0.0)
+    return false;
+  for (auto& row : m)
+    for (double& v : row)
+      v /= largest;
+  std::vector<double> minors = {m[0][0], m[0][0] * m[1][1] - m[0][1] * m[1][0]};
   if (m.size() == 3)
   {
     minors.push_back(m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
                      - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
                      + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]));
   }
-  if (!std::all_of(minors.begin(), minors.end(), [](double d) { return d > 0; }))
+  return std::all_of(minors.begin(), minors.end(), [](double d) { return d > 0; });
+}
+
+void check_spd(const Matrix& m, const std::string& path,
+               const std::string& source, const std::string& why)
+{
+  check_symmetric(m, path, source);
+  if (!positive_definite(m))
     fail(source, path + " = " + fmt(json(m)) + ": not positive definite: " + why);
 }
 
@@ -332,9 +374,20 @@ void check_semantics(const json& cfg, const std::string& source)
 
 bool is_index(const std::string& s, const json& node)
 {
-  return node.is_array() and !s.empty()
-         and std::all_of(s.begin(), s.end(), ::isdigit)
-         and std::stoul(s) < node.size();
+  return node.is_array() and !s.empty() and s.size() < 10
+         and std::all_of(s.begin(), s.end(), ::isdigit) and std::stoul(s) < node.size();
+}
+
+/// The value of `--set KEY=RAW`: JSON if it is JSON (within the limits of
+/// all JSON input), else the bare word as a string (`mumps`)
+json override_value(const std::string& key, const std::string& raw, const std::string& source)
+{
+  const json value = json::parse(raw, nullptr, false);
+  const bool looks_like_json
+      = !raw.empty() and std::string("[{\"-0123456789").find(raw[0]) != std::string::npos;
+  if (value.is_discarded() and !looks_like_json)
+    return raw;
+  return parse_json(raw, printable(source, 200) + ": --set " + key, max_config_bytes);
 }
 
 void apply_override(json& cfg, const std::string& text,
@@ -342,14 +395,14 @@ void apply_override(json& cfg, const std::string& text,
 {
   const auto eq = text.find('=');
   if (eq == std::string::npos)
-    fail(source, "--set '" + text + "': expected key.path=value");
+    fail(source, "--set '" + printable(text) + "': expected key.path=value");
   std::string key = text.substr(0, eq);
   key.erase(0, key.find_first_not_of(" \t"));
   key.erase(key.find_last_not_of(" \t") + 1);
-  const std::string raw = text.substr(eq + 1);
-  json value = json::parse(raw, nullptr, false);
-  if (value.is_discarded())
-    value = raw; // a bare word such as mumps is a string
+  if (key.empty() or key.front() == '.' or key.back() == '.'
+      or key.find("..") != std::string::npos)
+    fail(source, "--set '" + printable(text) + "': expected key.path=value");
+  const json value = override_value(printable(key), text.substr(eq + 1), source);
 
   std::vector<std::string> parts;
   std::stringstream ss(key);
@@ -369,7 +422,7 @@ void apply_override(json& cfg, const std::string& text,
       node = &(*node)[parts[d]];
     }
     else
-      fail(source, "--set " + key + ": '" + where + "' is not an object");
+      fail(source, "--set " + printable(key) + ": '" + where + "' is not an object");
   }
   const std::string& last = parts.back();
   if (is_index(last, *node))
@@ -377,7 +430,7 @@ void apply_override(json& cfg, const std::string& text,
   else if (node->is_object())
     (*node)[last] = value;
   else
-    fail(source, "--set " + key + ": cannot set '" + last + "' here");
+    fail(source, "--set " + printable(key) + ": cannot set '" + printable(last) + "' here");
 }
 } // namespace
 
@@ -403,29 +456,7 @@ std::string closest_key(const std::string& key,
 json load_config(const std::string& path,
                  const std::vector<std::string>& overrides)
 {
-  std::ifstream file(path);
-  if (!file)
-    fail(path, "cannot read config file: " + std::string(std::strerror(errno)));
-  const std::string text((std::istreambuf_iterator<char>(file)),
-                         std::istreambuf_iterator<char>());
-  json cfg;
-  try
-  {
-    cfg = json::parse(text);
-  }
-  catch (const json::parse_error& e)
-  {
-    // Line and column of the offending byte, as Python's json reports them
-    const std::size_t at = std::min<std::size_t>(e.byte ? e.byte - 1 : 0, text.size());
-    const std::size_t line = 1 + std::count(text.begin(), text.begin() + at, '\n');
-    const std::size_t bol = text.rfind('\n', at ? at - 1 : 0);
-    const std::size_t col = bol == std::string::npos ? at + 1 : at - bol;
-    std::string what = e.what();
-    what = what.substr(what.find(": ") + 2);
-    fail(path, "invalid JSON at line " + std::to_string(line) + " column "
-                   + std::to_string(col) + ": " + what);
-  }
-  return configure(cfg, overrides, path);
+  return configure(read_json_file(path), overrides, path);
 }
 
 json configure(json cfg, const std::vector<std::string>& overrides,

@@ -1,5 +1,8 @@
 #include "diagnostics.h"
 
+#include <cmath>
+#include <numeric>
+
 #include <dolfinx/fem/assembler.h>
 #include <dolfinx/fem/petsc.h>
 #include <dolfinx/geometry/BoundingBoxTree.h>
@@ -151,6 +154,27 @@ std::vector<double> contact_force(const Problem& problem)
     MPI_Allreduce(&local, &f[i], 1, MPI_DOUBLE, MPI_SUM, problem.comm);
   }
   return f;
+}
+
+double force_imbalance(const ForceBalance& balance, const std::vector<double>& contact_force,
+                       double applied_load)
+{
+  const auto norm = [](const std::vector<double>& v)
+  { return std::sqrt(std::inner_product(v.begin(), v.end(), v.begin(), 0.0)); };
+  const double forces = balance.supported + norm(contact_force) + applied_load;
+  const double left = norm(balance.unbalanced);
+  if (forces == 0.0)
+    return std::isfinite(left) ? 0.0 : left;
+  return left / forces; // NaN or inf stay so
+}
+
+double force_imbalance(const Problem& problem, const ForceBalance& balance,
+                       const std::vector<double>& contact_force)
+{
+  const double quick = force_imbalance(balance, contact_force, 0.0);
+  return quick <= balance_tolerance
+             ? quick
+             : force_imbalance(balance, contact_force, problem.applied_load());
 }
 
 std::map<std::string, double> boundary_measures(const Problem& problem)

@@ -42,6 +42,22 @@ private:
 /// Resultant force of the foundation on the body (N/m)
 std::vector<double> contact_force(const Problem& problem);
 
+/// A step is accepted only if its force_imbalance is at most this: the C++
+/// loop iterates until it is, Record refuses a step that is not
+constexpr double balance_tolerance = 1e-6;
+
+/// Newton's leftover on the free u dofs relative to the forces in play:
+/// |unbalanced| / (supported + |contact force| + applied_load)
+/// (ForceBalance, Problem::applied_load); 0 if no force is in play. A step
+/// whose forces balance has it at round-off.
+double force_imbalance(const ForceBalance& balance, const std::vector<double>& contact_force,
+                       double applied_load);
+
+/// force_imbalance at the current time, assembling the applied loads only
+/// if the other forces do not already show the balance. Collective.
+double force_imbalance(const Problem& problem, const ForceBalance& balance,
+                       const std::vector<double>& contact_force);
+
 /// Length (area in 3D) of each named boundary, from Model::boundary_measures.
 /// Collective.
 std::map<std::string, double> boundary_measures(const Problem& problem);

@@ -1,13 +1,19 @@
 #include "driver.h"
 #include "diagnostics.h"
+#include "json_input.h"
+#include "petsc_options.h"
 #include "mesh.h"
 #include "output.h"
 
 #include <algorithm>
 #include <cerrno>
+#include <dolfinx/common/loguru.hpp>
+#include <fcntl.h>
 #include <cstring>
 #include <fstream>
 #include <iostream>
+#include <set>
+#include <unistd.h>
 
 namespace piezocontact
 {
@@ -33,6 +39,25 @@ std::string usage_of(const std::string& program, const std::vector<EngineChoice>
 }
 } // namespace
 
+namespace
+{
+/// dolfinx 0.5 cannot collapse a sub-space on a process that owns no cell
+/// (a segmentation fault): refuse such a distribution. Collective.
+void check_every_rank_has_cells(const NamedMesh& mesh, MPI_Comm comm, const std::string& source)
+{
+  const auto cells = mesh.mesh->topology().index_map(mesh.mesh->topology().dim());
+  const int mine = cells->size_local();
+  int fewest = 0, size = 0;
+  MPI_Allreduce(&mine, &fewest, 1, MPI_INT, MPI_MIN, comm);
+  MPI_Comm_size(comm, &size);
+  if (fewest == 0)
+    throw ConfigError(printable(source, 200) + ": mesh: " + std::to_string(cells->size_global())
+                      + " cells for " + std::to_string(size)
+                      + " processes leave a process without a cell, which dolfinx 0.5 "
+                        "cannot handle: use a finer mesh or fewer processes");
+}
+} // namespace
+
 /// The summary.json of an interrupted or failed run in DIR, to continue it,
 /// with its config. `--set time.T=... --set time.steps=...` extend a run
 /// (completed or not) at the same step size.
@@ -41,33 +66,29 @@ std::pair<json, json> resumable_summary(const std::filesystem::path& dir,
                                         const std::string& solver)
 {
   const auto path = dir / "summary.json";
-  const std::string where = path.string() + ": cannot resume: ";
-  std::ifstream in(path);
-  if (!in)
+  const std::string where = printable(path.string(), 200) + ": cannot resume: ";
+  if (!std::filesystem::exists(path))
     throw ConfigError(where + "no such file");
   json summary;
   try
   {
-    summary = json::parse(in);
+    summary = read_json_file(path, max_summary_bytes);
   }
-  catch (const json::exception& e)
+  catch (const ConfigError& e)
   {
-    throw ConfigError(where + "not valid JSON");
+    throw ConfigError(where + std::string(e.what()).substr(printable(path.string(), 200).size() + 2));
   }
-  if (!summary.is_object() or summary.value("solver", "") != solver)
-  {
-    const auto theirs = summary.is_object() ? summary.value("solver", json(nullptr))
-                                            : json(nullptr);
-    throw ConfigError(where + "solver = " + theirs.dump() + ", this is the \"" + solver
+  const json theirs = summary.is_object() ? summary.value("solver", json(nullptr)) : json();
+  if (theirs != solver)
+    throw ConfigError(where + "solver = " + printable(theirs) + ", this is the \"" + solver
                       + "\" solver");
-  }
   if (!summary.contains("checkpoint") or !summary.contains("config"))
     throw ConfigError(where + "no checkpoint (an older version wrote it)");
   for (const auto& o : overrides)
   {
     const std::string key = o.substr(0, o.find('='));
     if (key != "time.T" and key != "time.steps")
-      throw ConfigError(path.string() + ": --set " + key
+      throw ConfigError(printable(path.string(), 200) + ": --set " + printable(key)
                                + ": only time.T and time.steps can change on --resume "
                                  "(to extend the run)");
   }
@@ -92,6 +113,28 @@ std::pair<json, json> resumable_summary(const std::filesystem::path& dir,
 
 /// Create DIR and check that it can be written, on rank 0; every rank then
 /// gets the same error, so that none waits for the others forever.
+namespace
+{
+/// Why files cannot be created in `dir` (made if missing), in the OS's
+/// words; empty if they can
+std::string unwritable(const std::filesystem::path& dir)
+{
+  std::error_code ec;
+  if (std::filesystem::exists(dir, ec) and !std::filesystem::is_directory(dir, ec))
+    return "it exists and is not a directory";
+  std::filesystem::create_directories(dir, ec);
+  if (ec)
+    return ec.message();
+  const auto probe = dir / ".write-test";
+  const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  if (fd < 0)
+    return std::strerror(errno);
+  ::close(fd);
+  ::unlink(probe.c_str());
+  return "";
+}
+} // namespace
+
 void prepare_output(const std::filesystem::path& dir, const std::string& source,
                     MPI_Comm comm)
 {
@@ -100,20 +143,9 @@ void prepare_output(const std::filesystem::path& dir, const std::string& source,
   std::string error;
   if (rank == 0)
   {
-    std::error_code ec;
-    std::filesystem::create_directories(dir, ec);
-    const auto probe = dir / ".write-test";
-    if (!ec)
-    {
-      std::ofstream out(probe);
-      if (!out)
-        ec = std::make_error_code(std::errc::permission_denied);
-    }
-    std::filesystem::remove(probe, ec);
-    if (!std::filesystem::is_directory(dir) or !std::ofstream(probe))
-      error = source + ": --output " + dir.string()
-              + ": cannot write there: " + std::strerror(errno);
-    std::filesystem::remove(probe, ec);
+    if (const std::string why = unwritable(dir); !why.empty())
+      error = printable(source, 200) + ": --output " + printable(dir.string(), 200)
+              + ": cannot write there: " + why;
   }
   bcast_error(error, comm);
 }
@@ -121,6 +153,9 @@ json run_config(const RunRequest& request, MPI_Comm comm, const ModelFactory& ma
                 const Engine& engine, const StepObserver& observer)
 {
   const json& cfg = request.cfg;
+  const RunSettings settings = run_settings(cfg);
+  check_petsc_options(settings.petsc_options, request.source);
+  const QuietPetscErrors quiet; // PETSc failures become exceptions, not dumps
   std::optional<std::filesystem::path> mesh_file;
   if (!request.resume)
     mesh_file = prepare_mesh(cfg, request.source, request.output, comm);
@@ -129,9 +164,9 @@ json run_config(const RunRequest& request, MPI_Comm comm, const ModelFactory& ma
   if (mesh_file)
     mesh_file = std::filesystem::absolute(*mesh_file);
   const NamedMesh mesh = build_mesh(cfg, comm, mesh_file, request.source);
+  check_every_rank_has_cells(mesh, comm, request.source);
   Model model = make_model(mesh, cfg);
   set_constants(cfg, mesh.tag_of, model.constants, request.source);
-  const RunSettings settings = run_settings(cfg);
   Problem problem(std::move(model), settings.dirichlet, request.source);
 
   json summary;
@@ -155,55 +190,105 @@ json run_config(const RunRequest& request, MPI_Comm comm, const ModelFactory& ma
              request.progress, observer);
 }
 
+namespace
+{
+struct Arguments
+{
+  std::string config, output, engine;
+  std::vector<std::string> overrides;
+  bool quiet = false, resume = false, help = false;
+};
+
+/// Strict: every argument is one of ours (PETSc options go in the config's
+/// solver.petsc_options). Throws std::invalid_argument naming the argument.
+Arguments parse_arguments(const std::vector<std::string>& args,
+                          const std::vector<EngineChoice>& engines)
+{
+  Arguments out;
+  std::vector<std::string> flags = {"--config", "--output", "--set", "--quiet", "--resume",
+                                    "--help"};
+  if (engines.size() > 1)
+    flags.push_back("--engine");
+  std::set<std::string> seen;
+  for (std::size_t i = 0; i < args.size(); ++i)
+  {
+    const std::string& a = args[i];
+    const auto value = [&]
+    {
+      if (i + 1 == args.size() or args[i + 1].empty() or args[i + 1].rfind("--", 0) == 0)
+        throw std::invalid_argument(a + " needs a value");
+      return args[++i];
+    };
+    if (a != "--set" and std::find(flags.begin(), flags.end(), a) != flags.end()
+        and !seen.insert(a).second)
+      throw std::invalid_argument(a + " given twice");
+    if (a == "--config")
+      out.config = value();
+    else if (a == "--output")
+      out.output = value();
+    else if (a == "--set")
+      out.overrides.push_back(value());
+    else if (a == "--engine" and engines.size() > 1)
+      out.engine = value();
+    else if (a == "--quiet")
+      out.quiet = true;
+    else if (a == "--resume")
+      out.resume = true;
+    else if (a == "-h" or a == "--help")
+      out.help = true;
+    else
+    {
+      const std::string near = a.rfind("-", 0) == 0 ? closest_key(a, flags) : "";
+      throw std::invalid_argument("unknown argument '" + printable(a) + "'"
+                                  + (near.empty() ? "" : " (did you mean " + near + "?)"));
+    }
+  }
+  if (out.engine.empty())
+    out.engine = engines.at(0).name;
+  if (std::none_of(engines.begin(), engines.end(),
+                   [&](const auto& e) { return e.name == out.engine; }))
+    throw std::invalid_argument("--engine " + printable(out.engine) + ": not one of the engines above");
+  if (out.help)
+    return out;
+  if (out.output.empty())
+    throw std::invalid_argument("--output is required");
+  if (out.resume and !out.config.empty())
+    throw std::invalid_argument("--resume takes the config from DIR/summary.json: no --config");
+  if (!out.resume and out.config.empty())
+    throw std::invalid_argument("--config is required");
+  return out;
+}
+} // namespace
+
 int command_line(const std::string& program, const std::vector<std::string>& args,
                  MPI_Comm comm, const std::vector<EngineChoice>& engines)
 {
   int rank;
   MPI_Comm_rank(comm, &rank);
-  std::string config_path, output_dir;
-  std::vector<std::string> overrides;
-  bool quiet = false, resume = false;
-  std::string engine_name = engines.at(0).name;
-  for (std::size_t i = 0; i < args.size(); ++i)
+  // Our messages say what went wrong; dolfinx's warnings (e.g. Newton's, at
+  // each step that is then halved) would only repeat it
+  loguru::g_stderr_verbosity = loguru::Verbosity_ERROR;
+  Arguments arguments;
+  try
   {
-    const std::string& a = args[i];
-    const bool has_value = i + 1 < args.size();
-    if (a == "--config" and has_value)
-      config_path = args[++i];
-    else if (a == "--output" and has_value)
-      output_dir = args[++i];
-    else if (a == "--set" and has_value)
-      overrides.push_back(args[++i]);
-    else if (a == "--quiet")
-      quiet = true;
-    else if (a == "--resume")
-      resume = true;
-    else if (a == "--engine" and has_value and engines.size() > 1)
-      engine_name = args[++i];
-    else if (a == "-h" or a == "--help")
-    {
-      if (rank == 0)
-        std::cout << usage_of(program, engines);
-      return 0;
-    }
+    arguments = parse_arguments(args, engines);
   }
-  const auto chosen = std::find_if(engines.begin(), engines.end(),
-                                   [&](const auto& e) { return e.name == engine_name; });
-  std::string bad_args;
-  if (chosen == engines.end())
-    bad_args = "--engine " + engine_name + ": not one of the engines above";
-  else if (output_dir.empty())
-    bad_args = "--output is required";
-  else if (resume and !config_path.empty())
-    bad_args = "--resume takes the config from DIR/summary.json: no --config";
-  else if (!resume and config_path.empty())
-    bad_args = "--config is required";
-  if (!bad_args.empty())
+  catch (const std::invalid_argument& e)
   {
     if (rank == 0)
-      std::cerr << usage_of(program, engines) << "error: " << bad_args << "\n";
+      std::cerr << usage_of(program, engines) << "error: " << e.what() << "\n";
     return exit_config_error;
   }
+  if (arguments.help)
+  {
+    if (rank == 0)
+      std::cout << usage_of(program, engines);
+    return 0;
+  }
+  const auto& [config_path, output_dir, engine_name, overrides, quiet, resume, help]
+      = arguments;
+  const auto chosen = std::find_if(engines.begin(), engines.end(),
+                                   [&](const auto& e) { return e.name == engine_name; });
 
   const InterruptScope interrupts;
   int code = 0;

@@ -61,11 +61,6 @@ bool FieldwiseConvergence::check(std::span<const double> x,
   std::vector<double> global(local.size());
   MPI_Allreduce(local.data(), global.data(), local.size(), MPI_DOUBLE, MPI_SUM,
                 _comm);
-  double s_total = 0;
-  for (std::size_t f = 0; f < _dofs.size(); ++f)
-    s_total += global[3 * f + 2];
-  s_total = std::sqrt(s_total);
-
   std::map<std::string, FieldNorms> entry;
   bool ok = true;
   std::size_t f = 0;
@@ -76,7 +71,10 @@ bool FieldwiseConvergence::check(std::span<const double> x,
     const double rel = s > 0 ? r / s
                              : (r == 0 ? 0.0 : std::numeric_limits<double>::quiet_NaN());
     entry[name] = {si, r, rel};
-    ok = ok and (r <= _rtol * s + _atol * s_total);
+    // The floor is this field's own scale at the solve's first iterate
+    if (history.empty())
+      _s_start[name] = s;
+    ok = ok and (r <= _rtol * s + _atol * _s_start[name]);
     ++f;
   }
   history.push_back(entry);

@@ -7,7 +7,10 @@
 // Jacobi-scaled system D^-1/2 J D^-1/2 (D^1/2 x) = D^-1/2 F, D = |diag J|,
 // where both blocks are O(1). Per field f:
 //   r_f = ||D^-1/2 F||_f,  s_f = ||D^1/2 x||_f,
-// converged when r_f <= rtol s_f + atol s for every f, s = ||(s_u, s_phi)||.
+// converged when r_f <= rtol s_f + atol s_f^0 for every f, s_f^0 = s_f at the
+// solve's first iterate (the predictor). Each field in its own scale: a floor
+// from the other field's (a huge contact penalty inflates s_u) would accept
+// a phi that was never solved for.
 // Dirichlet dofs are left out: their rows hold x - g under an arbitrary unit
 // diagonal, so a 20 V electrode would otherwise weigh 20 in s_phi where a
 // free dof weighs ~1e-4.
@@ -42,7 +45,8 @@ public:
   /// Take D = |diag J| from an assembled Jacobian
   void set_scaling(Mat A);
 
-  /// Record one iterate (owned parts of x and F); true when converged
+  /// Record one iterate (owned parts of x and F); true when converged. A
+  /// solve starts with an empty `history`.
   bool check(std::span<const double> x, std::span<const double> b);
 
   /// Norms of every recorded iterate of the current solve
@@ -52,6 +56,7 @@ private:
   std::map<std::string, std::vector<std::int32_t>> _dofs;
   std::vector<double> _sqrt_d;
   double _rtol, _atol;
+  std::map<std::string, double> _s_start; ///< s_f at the solve's first iterate
   MPI_Comm _comm;
 };
 } // namespace piezocontact

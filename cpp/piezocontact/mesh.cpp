@@ -1,4 +1,5 @@
 #include "mesh.h"
+#include "json_input.h"
 
 #include <algorithm>
 #include <cmath>
@@ -102,15 +103,18 @@ NamedMesh read_xdmf(const std::filesystem::path& file, MPI_Comm comm,
   json names;
   try
   {
-    std::ifstream in(sidecar);
-    if (!in)
-      throw std::runtime_error(std::strerror(errno));
-    names = json::parse(in).at("boundaries");
+    names = read_json_file(sidecar).at("boundaries");
+    if (!names.is_object())
+      throw std::runtime_error("\"boundaries\" is not an object");
+    for (const auto& [name, tag] : names.items())
+      if (!tag.is_number_integer() or tag.get<double>() < 1 or tag.get<double>() > 1e9)
+        throw std::runtime_error("boundaries." + printable(name) + " = " + printable(tag)
+                                 + ": expected a positive integer (a facet tag)");
   }
   catch (const std::exception& e)
   {
     throw ConfigError(source + ": mesh: cannot read the boundary names of "
-                      + file.string() + " from " + sidecar.string() + ": " + e.what());
+                      + file.string() + " from " + sidecar.string() + ": " + printable(e.what(), 300));
   }
   NamedMesh out;
   std::vector<std::int32_t> tag_indices, tag_values;
@@ -166,8 +170,8 @@ prepare_mesh(const json& cfg, const std::string& source,
   if (rank == 0)
   {
     if (!std::filesystem::is_regular_file(path))
-      error = source + ": mesh." + key + " = " + m[key].dump() + ": no such file ("
-              + path.string() + ")";
+      error = printable(source, 200) + ": mesh." + key + " = " + printable(m[key])
+              + ": no such file (" + printable(path.string(), 200) + ")";
     else if (type == "gmsh")
     {
       target = std::filesystem::absolute(out_dir) / "mesh" / (path.stem().string() + ".xdmf");
@@ -188,9 +192,9 @@ prepare_mesh(const json& cfg, const std::string& source,
         while (std::getline(in, line))
           if (!line.empty())
             last = line;
-        error = source + ": mesh.geometry = " + m["geometry"].dump()
+        error = printable(source, 200) + ": mesh.geometry = " + printable(m["geometry"])
                 + ": mesh generation failed (exit " + std::to_string(WEXITSTATUS(status))
-                + "): " + last;
+                + "): " + printable(last, 200);
       }
     }
   }

@@ -42,6 +42,9 @@ struct Model
   /// Residual, its Jacobian, and the contact part of the Jacobian alone
   /// (only contact facets: J changes between iterates only if it does)
   std::shared_ptr<const dolfinx::fem::Form<double>> F, J, J_contact;
+  /// The applied loads, a linear form (F = internal forces - L): its size
+  /// scales the force balance that accepts a step. Optional.
+  std::shared_ptr<const dolfinx::fem::Form<double>> L;
   /// Components of the foundation's resultant force on the body (N/m)
   std::vector<std::shared_ptr<const dolfinx::fem::Form<double>>> contact_force;
   /// Cell-wise electric displacement and Voigt stress, for output

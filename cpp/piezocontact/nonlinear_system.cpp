@@ -75,6 +75,7 @@ void NonlinearSystem::record_reactions(Vec r)
   PetscInt n;
   VecGetLocalSize(r, &n);
   reactions = _p.reactions(std::span<const double>(a, n));
+  balance = _p.force_balance(std::span<const double>(a, n));
   VecRestoreArrayRead(r, &a);
 }
 

@@ -37,6 +37,8 @@ public:
   int reused = 0; ///< Newton iterations that kept the last factorisation
   /// reaction of each clamped boundary at the last residual evaluation
   std::map<std::string, std::vector<double>> reactions;
+  /// ... and the balance of forces in it
+  ForceBalance balance;
   /// The iterate (local dofs, with ghosts) and k at which the Jacobian in use
   /// was assembled: a resumed run rebuilds the same matrix, LU and scaling
   std::vector<double> x_assembled;

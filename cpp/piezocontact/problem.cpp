@@ -1,4 +1,6 @@
 #include "problem.h"
+
+#include <algorithm>
 #include "config.h"
 
 #include <dolfinx/fem/assembler.h>
@@ -42,6 +44,7 @@ Problem::Problem(Model model_, const std::vector<DirichletSettings>& dirichlet,
 
 void Problem::set_time(double t, double k)
 {
+  _applied_load = -1.0; // loads may depend on t
   model.constants.at("k")->value = {k};
   if (auto it = model.constants.find("t"); it != model.constants.end())
     it->second->value = {t};
@@ -91,6 +94,55 @@ std::map<std::string, std::vector<double>> Problem::reactions() const
   fem::assemble_vector(r.mutable_array(), *model.F);
   r.scatter_rev(std::plus<double>());
   return reactions(r.array().subspan(0, imap.size_local() * bs));
+}
+
+ForceBalance Problem::force_balance(std::span<const double> r) const
+{
+  std::vector<std::int32_t> constrained = bc_dofs;
+  std::sort(constrained.begin(), constrained.end());
+  const int dim = V_u->dofmap()->index_map_bs();
+  std::vector<double> local(dim + 1, 0.0), global(dim + 1); // resultant, then supported
+  for (std::size_t i = 0; i < u_dofs.size(); ++i)
+  {
+    const std::int32_t d = u_dofs[i];
+    if (d >= std::int32_t(r.size()))
+      continue;
+    if (std::binary_search(constrained.begin(), constrained.end(), d))
+      local[dim] += std::abs(r[d]);
+    else
+      local[i % dim] += r[d];
+  }
+  MPI_Allreduce(local.data(), global.data(), dim + 1, MPI_DOUBLE, MPI_SUM, comm);
+  return {std::vector<double>(global.begin(), global.begin() + dim), global[dim]};
+}
+
+ForceBalance Problem::force_balance() const
+{
+  const int bs = W->dofmap()->index_map_bs();
+  la::Vector<double> r(W->dofmap()->index_map, bs);
+  fem::assemble_vector(r.mutable_array(), *model.F);
+  r.scatter_rev(std::plus<double>());
+  return force_balance(r.array().subspan(0, W->dofmap()->index_map->size_local() * bs));
+}
+
+double Problem::applied_load() const
+{
+  if (_applied_load >= 0.0 or !model.L)
+    return std::max(_applied_load, 0.0);
+  const int bs = W->dofmap()->index_map_bs();
+  la::Vector<double> L(W->dofmap()->index_map, bs);
+  fem::assemble_vector(L.mutable_array(), *model.L);
+  L.scatter_rev(std::plus<double>());
+  std::vector<std::int32_t> constrained = bc_dofs;
+  std::sort(constrained.begin(), constrained.end());
+  double local = 0.0;
+  const auto a = L.array();
+  const std::int32_t owned = W->dofmap()->index_map->size_local() * bs;
+  for (const std::int32_t d : u_dofs)
+    if (d < owned and !std::binary_search(constrained.begin(), constrained.end(), d))
+      local += std::abs(a[d]);
+  MPI_Allreduce(&local, &_applied_load, 1, MPI_DOUBLE, MPI_SUM, comm);
+  return _applied_load;
 }
 
 std::vector<std::int32_t> Problem::boundary_facets(const std::string& name) const

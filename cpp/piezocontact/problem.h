@@ -18,6 +18,17 @@
 
 namespace piezocontact
 {
+/// What a residual says about equilibrium. `unbalanced`: its resultant over
+/// the free u dofs, per component, what Newton left (the loads, the contact
+/// force and the reactions balance when it is zero); `supported`: the sum
+/// of |entries| at the clamped u dofs, the nodal reactions, i.e. the forces
+/// that flow through the body to its supports (their resultant may be 0).
+struct ForceBalance
+{
+  std::vector<double> unbalanced;
+  double supported = 0.0;
+};
+
 class Problem
 {
 public:
@@ -43,6 +54,17 @@ public:
   /// The reactions at the current x, from a residual assembled for them
   std::map<std::string, std::vector<double>> reactions() const;
 
+  /// The balance of forces in a residual (owned entries of `r`, before its
+  /// Dirichlet rows are set; collective)
+  ForceBalance force_balance(std::span<const double> r) const;
+
+  /// The same at the current x, from a residual assembled for it
+  ForceBalance force_balance() const;
+
+  /// Sum of |applied loads| over the free u dofs at the current t (the
+  /// model's L; 0 without one), assembled once per time. Collective.
+  double applied_load() const;
+
   /// Facets (local indices) of a named boundary
   std::vector<std::int32_t> boundary_facets(const std::string& name) const;
 
@@ -65,6 +87,7 @@ public:
   std::map<std::string, std::vector<std::vector<std::int32_t>>> clamped_dofs;
 
 private:
+  mutable double _applied_load = -1.0; ///< at the current t; < 0: not yet
   void create_bcs(const std::vector<DirichletSettings>& dirichlet, const std::string& source);
 };
 } // namespace piezocontact

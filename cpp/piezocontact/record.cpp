@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <numeric>
 
 namespace piezocontact
 {
@@ -206,6 +207,7 @@ json Record::accept(StepState state, const SolveReport& report, const StateViews
   step["reactions"] = json::object();
   for (const auto& [name, r] : report.reactions ? *report.reactions : problem.reactions())
     step["reactions"][name] = r;
+  check_balance(step);
   step["krylov_iterations"] = report.krylov_iterations;
   step["k"] = report.k;
   if (!problem.model.squared_errors.empty())
@@ -251,6 +253,27 @@ json Record::accept(StepState state, const SolveReport& report, const StateViews
   if (_observer)
     _observer(state.step, step);
   return step;
+}
+
+// Newton's test is on the Jacobi-scaled residual: where one block of the
+// matrix dwarfs the rest (a contact penalty 1e19 times the elastic
+// stiffness), it can pass while forces in newtons are left over. A step is
+// accepted only if the loads, the contact force and the reactions balance.
+void Record::check_balance(const json& step)
+{
+  const double ratio = force_imbalance(_problem, _problem.force_balance(),
+                                       step["contact_force"].get<std::vector<double>>());
+  if (ratio <= balance_tolerance)
+    return;
+  char what[400];
+  std::snprintf(what, sizeof(what),
+                "forces do not balance at t = %g although Newton's test passed: what is "
+                "left on the free dofs is %.3g of the contact and support forces (at most "
+                "%g accepted); the system is too ill-conditioned for double precision "
+                "(contact.c_p = %g)",
+                step["t"].get<double>(), ratio, balance_tolerance,
+                _problem.model.constants.at("c_p")->value[0]);
+  fail(what);
 }
 
 void Record::reject(const SolveReport& report, const std::string& action)

@@ -101,6 +101,8 @@ public:
 private:
   void write_summary();
   [[noreturn]] void fail_on_output(const OutputError& e);
+  /// fail() unless the step's forces balance to balance_tolerance
+  void check_balance(const json& step);
   StepState write_checkpoint(StepState state, const StateViews& states);
 
   Problem& _problem;

@@ -1,6 +1,9 @@
 #include "time_loop.h"
+#include "diagnostics.h"
 #include "fieldwise.h"
+#include "json_input.h"
 #include "nonlinear_system.h"
+#include "petsc_options.h"
 #include "step_control.h"
 
 #include <cmath>
@@ -118,27 +121,35 @@ json run(Problem& problem, const RunSettings& settings, const std::filesystem::p
   // signal on any rank ends the solve too ("converged"; the loop then
   // abandons the step), so that every rank stops at the same iteration.
   int signal = 0;
+  double imbalance = 0.0; // force_imbalance at the last iterate
   newton.set_convergence_check(
-      [&monitor, &problem, &signal](const nls::petsc::NewtonSolver&, const Vec r)
+      [&monitor, &problem, &signal, &system, &imbalance](const nls::petsc::NewtonSolver&,
+                                                         const Vec r)
       {
         PetscInt n;
         VecGetLocalSize(r, &n);
         const PetscScalar* ra;
         VecGetArrayRead(r, &ra);
-        const bool ok = monitor.check(problem.x->x()->array().subspan(0, n),
-                                      std::span<const double>(ra, n));
+        const std::span<const double> residual(ra, n);
+        const bool ok = monitor.check(problem.x->x()->array().subspan(0, n), residual);
+        // The scaled test alone can pass with newtons left over where one
+        // block dwarfs the rest (a huge contact penalty): balance them too
+        imbalance = force_imbalance(problem, system.balance, contact_force(problem));
         VecRestoreArrayRead(r, &ra);
         PetscReal norm;
         VecNorm(r, NORM_2, &norm);
         signal = agreed_interrupt(problem.comm);
-        return std::pair<double, bool>(norm, ok or signal != 0);
+        return std::pair<double, bool>(norm, (ok and imbalance <= balance_tolerance)
+                                                 or signal != 0);
       });
   newton.max_it = settings.newton.max_iterations;
   newton.report = false;
   newton.error_on_nonconvergence = false;
-  // After the constructor, which writes its own nls_solve_ defaults
-  for (const auto& [key, value] : settings.petsc_options)
-    la::petsc::options::set("nls_solve_" + key, value);
+  // Our prefix, our defaults (LU by MUMPS), then the config's options
+  PetscOptionList options = loop_defaults();
+  options.insert(options.end(), settings.petsc_options.begin(), settings.petsc_options.end());
+  const ScopedPetscOptions scoped_options(petsc_prefix, options);
+  newton.get_krylov_solver().set_options_prefix(petsc_prefix);
   newton.get_krylov_solver().set_from_options();
   set_field_splits(newton.get_krylov_solver().ksp(), problem);
 
@@ -196,7 +207,17 @@ json run(Problem& problem, const RunSettings& settings, const std::filesystem::p
     monitor.history.clear();
     const int f0 = system.factorisation.count;
     common::Timer newton_timer("piezocontact: Newton solve");
-    const auto [its, converged] = newton.solve(x);
+    std::pair<int, bool> outcome;
+    try
+    {
+      outcome = newton.solve(x);
+    }
+    catch (const std::runtime_error& e) // a PETSc call failed (QuietPetscErrors)
+    {
+      record.fail("the linear solver failed at t = " + json(t).dump() + ": "
+                  + printable(std::string(e.what()), 300));
+    }
+    const auto [its, converged] = outcome;
     problem.x->x()->scatter_fwd();
     newton_s += newton_timer.stop();
     newton_its += its;
@@ -212,12 +233,19 @@ json run(Problem& problem, const RunSettings& settings, const std::filesystem::p
     if (!converged)
     {
       const auto& last = monitor.history.back();
-      char what[256];
+      char what[512];
       std::snprintf(what, sizeof(what),
                     "Newton did not converge at t = %g (k = %g) in %d iterations: "
-                    "relative residuals u = %s, phi = %s",
+                    "relative residuals u = %s, phi = %s%s",
                     t, k, its, sci(last.at("u").relative).c_str(),
-                    sci(last.at("phi").relative).c_str());
+                    sci(last.at("phi").relative).c_str(),
+                    imbalance <= balance_tolerance
+                        ? ""
+                        : (", forces unbalanced by " + sci(imbalance)
+                           + " of the contact and support forces (too ill-conditioned for "
+                             "double precision? contact.c_p = "
+                           + sci(problem.model.constants.at("c_p")->value[0]) + ")")
+                              .c_str());
       const std::string action = steps.reject();
       record.reject(report, action);
       if (action == "stop")

@@ -9,10 +9,15 @@ from mpi4py import MPI
 from . import api, cpp, model
 
 
+def _warnings_only(record):
+    return record.levelno >= logging.WARNING
+
+
 def main(argv):
     # the JIT's compiler (distutils, via cffi) lowers the root logger to
     # INFO and logs every compiler command: a command line shows warnings only
-    logging.getLogger().addFilter(lambda record: record.levelno >= logging.WARNING)
+    if _warnings_only not in logging.getLogger().filters:
+        logging.getLogger().addFilter(_warnings_only)
     keep = []  # the Python model objects of the run (the reference engine's)
     engines = [(name, solver, model.factory(keep=keep), api.engine_loop(name, keep))
                for name, solver in api.ENGINES.items()]

@@ -106,6 +106,8 @@ class JitModel:
         self.F_ufl = F
         self.J_ufl = pf.jacobian(F, self.x, dx_trial)
         self.F, self.J, self.J_contact = fem.form([F, self.J_ufl, J_state])
+        self.L = fem.form(mms.applied_loads(y, ds, self.data, law) if manufactured
+                          else pf.applied_loads(y, ds, self.data))
         self.contact_force = [fem.form(pf.contact_force(self.x, ds, self.data, i, law))
                               for i in range(msh.geometry.dim)]
         self.boundary_measures = {name: fem.form(1.0 * ds(tag))
@@ -133,7 +135,7 @@ class JitModel:
         m.x = self.x._cpp_object
         m.x_prev = self.x_prev._cpp_object
         m.constants = {name: c._cpp_object for name, c in self.data.items()}
-        m.F, m.J, m.J_contact = self.F, self.J, self.J_contact
+        m.F, m.J, m.J_contact, m.L = self.F, self.J, self.J_contact, self.L
         m.contact_force = self.contact_force
         m.electric_displacement = self.electric_displacement._cpp_object
         m.stress = self.stress._cpp_object

@@ -27,7 +27,7 @@ class _Newton:
     NonlinearProblem assembles it (lifting, then the BC rows)."""
 
     def __init__(self, model, problem, settings, comm):
-        self.x, self.bcs = model.x, problem.bcs
+        self.x, self.bcs, self.problem = model.x, problem.bcs, problem
         self.F_form, self.J_form = model.F, model.J
         self.fields = {"u": np.asarray(problem.u_dofs), "phi": np.asarray(problem.phi_dofs)}
         self.b = fem.petsc.create_vector(self.F_form)
@@ -47,6 +47,7 @@ class _Newton:
         self.snes.setTolerances(max_it=max(50, settings.newton.max_iterations))
         self.snes.setConvergenceTest(self._converged)
         self.history = []
+        self.imbalance = 0.0  # force_imbalance at the last iterate
         self.assembly_s = 0.0
 
     def _F(self, snes, x, F):
@@ -59,6 +60,7 @@ class _Newton:
         fem.petsc.assemble_vector(F, self.F_form)
         fem.petsc.apply_lifting(F, [self.J_form], bcs=[self.bcs], x0=[x], scale=-1.0)
         F.ghostUpdate(PETSc.InsertMode.ADD, PETSc.ScatterMode.REVERSE)
+        self.balance = self.problem.force_balance(F.getArray(readonly=True))
         fem.petsc.set_bc(F, self.bcs, x, -1.0)
         self.assembly_s += time.perf_counter() - t0
 
@@ -88,7 +90,14 @@ class _Newton:
         dx, x = self._norms(snes.getSolutionUpdate()), self._norms(snes.getSolution())
         relative = {f: dx[f] / x[f] if x[f] > 0 else 0.0 for f in dx}
         self.history.append({f: (F_norms[f], relative[f]) for f in F_norms})
-        if all(r <= INCREMENT_RTOL for r in relative.values()):
+        # Small increments are not enough where the penalty makes J
+        # ill-conditioned: the forces must balance too (a physical check,
+        # computed by the library's diagnostics)
+        imbalance = cpp.force_imbalance(self.problem, self.balance,
+                                        cpp.contact_force(self.problem))
+        self.imbalance = imbalance
+        if all(r <= INCREMENT_RTOL for r in relative.values()) \
+                and imbalance <= cpp.balance_tolerance:
             return PETSc.SNES.ConvergedReason.CONVERGED_SNORM_RELATIVE
         if it >= snes.getTolerances()[3]:
             return PETSc.SNES.ConvergedReason.DIVERGED_MAX_IT
@@ -161,8 +170,12 @@ def run(model, problem, settings, output, summary, progress, observer=None):
         report = _report(t, k, its, newton.history)
         if not converged:
             record.reject(report, "stop")
+            unbalanced = "" if newton.imbalance <= cpp.balance_tolerance else (
+                f", forces unbalanced by {newton.imbalance:.3e} of the contact and support "
+                "forces (too ill-conditioned for double precision? contact.c_p = "
+                f"{float(model.data['c_p'].value):.3e})")
             record.fail(f"Newton did not converge at t = {t:g} (k = {k:g}) in {its} "
-                        "iterations (reference engine)")
+                        f"iterations (reference engine){unbalanced}")
         # recorded while x_prev is u_{n-1}: the stress holds the velocity
         record.accept(cpp.StepState(n, n, t, k, k, k), report, x, x_prev, x,
                       n == settings.steps, timing())
