@@ -10,7 +10,10 @@
 // converged when r_f <= rtol s_f + atol s_f^0 for every f, s_f^0 = s_f at the
 // solve's first iterate (the predictor). Each field in its own scale: a floor
 // from the other field's (a huge contact penalty inflates s_u) would accept
-// a phi that was never solved for.
+// a phi that was never solved for. A field whose last Newton update was at
+// round-off (max |dx_f| <= 1e-11 max |x_f|) has converged too: where its
+// rows are dominated by coupling terms its scaled residual stalls above
+// rtol. The time loop also requires the forces to balance (diagnostics.h).
 // Dirichlet dofs are left out: their rows hold x - g under an arbitrary unit
 // diagonal, so a 20 V electrode would otherwise weigh 20 in s_phi where a
 // free dof weighs ~1e-4.
@@ -31,6 +34,9 @@ struct FieldNorms
   double scaled_residual; ///< r_f
   double relative;        ///< r_f / s_f; NaN (null in JSON) while s_f = 0 < r_f
 };
+
+/// A field whose Newton update is this small against it has settled
+constexpr double increment_rtol = 1e-11;
 
 class FieldwiseConvergence
 {
@@ -57,6 +63,7 @@ private:
   std::vector<double> _sqrt_d;
   double _rtol, _atol;
   std::map<std::string, double> _s_start; ///< s_f at the solve's first iterate
+  std::vector<double> _x_last;            ///< the previous iterate (owned)
   MPI_Comm _comm;
 };
 } // namespace piezocontact

@@ -31,13 +31,13 @@ json read_json_file(const std::filesystem::path& path,
 
 /// `text` fit for a one-line message: bytes outside printable ASCII as \xNN,
 /// at most `max` characters (then "...")
-std::string printable(const std::string& text, std::size_t max = 80);
+std::string printable(const std::string& text, std::size_t max = 160);
 
-inline std::string printable(const char* text, std::size_t max = 80)
+inline std::string printable(const char* text, std::size_t max = 160)
 {
   return printable(std::string(text), max);
 }
 
 /// A JSON value fit for a one-line message (printable, abbreviated)
-std::string printable(const json& value, std::size_t max = 80);
+std::string printable(const json& value, std::size_t max = 160);
 } // namespace piezocontact
