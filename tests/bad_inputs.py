@@ -87,6 +87,9 @@ CASES = {
     "PETSc option with a dash": (SQUARE, ["solver.petsc_options.-ksp_type=cg"],
                                  "solver.petsc_options.-ksp_type = cg: not a PETSc option "
                                  "name (letters, digits and _; no leading dash)"),
+    "no displacement condition": (SQUARE, ["boundaries.left={}"],
+                                  "boundaries: none has a displacement condition: with "
+                                  "frictionless contact nothing holds the body against sliding"),
     "output is a file": (SQUARE, [], "cannot write there: it exists and is not a directory"),
     "missing required key": ("NO_CP", [], "contact.c_p: missing required key"),
     "Dirichlet value neither numbers nor \"exact\"": (

@@ -357,9 +357,11 @@ void check_semantics(const json& cfg, const std::string& source)
             "viscosity must be positive definite (2.11c)");
   check_symmetric(mat["elastic"].get<Matrix>(), "material.elastic", source);
 
+  bool held = false;
   for (const auto& [name, bc] : cfg["boundaries"].items())
   {
-    const std::string where = "boundaries." + name;
+    const std::string where = join("boundaries", name);
+    held = held or bc.contains("displacement");
     const bool contact = bc.value("contact", false);
     if (bc.contains("displacement") and (bc.contains("traction") or contact))
       fail(source, where + ": a clamped boundary (displacement) cannot also "
@@ -369,6 +371,11 @@ void check_semantics(const json& cfg, const std::string& source)
     if (bc.contains("potential") and bc.contains("surface_charge"))
       fail(source, where + ": potential and surface_charge are exclusive");
   }
+  // Frictionless contact pushes only along the normal: without a clamped
+  // boundary the body can slide, and the Jacobian is singular
+  if (!held)
+    fail(source, "boundaries: none has a displacement condition: with frictionless contact "
+                 "nothing holds the body against sliding");
   check_manufactured(cfg, source);
 }
 
