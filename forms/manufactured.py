@@ -1,5 +1,6 @@
 """Manufactured solutions: an exact (u, phi) in closed form and the loads
-that make it solve the model, derived by UFL from piezo_forms.py.
+that make it solve the model, derived by UFL from piezo_forms.py, in 2D and
+3D.
 
 The exact solution is u = U0 theta(t) U(x), phi = PHI0 theta(t) Phi(x), with
 runtime switches (Constants equal to 0 or 1):
@@ -9,17 +10,20 @@ runtime switches (Constants equal to 0 or 1):
     or theta = sin(pi t / 2) (error O(k)).
 theta(0) = 0, so u_0 = 0 as in the paper.
 
-The loads come from the strong form of the equations that residual() of
-piezo_forms weakens, with the stress and electric displacement of
-piezo_forms evaluated at the exact solution and its exact velocity:
-  f0 = -div sigma, q0 = div D in the body,
-  fF = sigma n, qF = -D.n on every boundary (on Dirichlet boundaries the
-    rows are replaced by the boundary values, so these are never felt there),
-  plus p(u.nu - g) nu on the contact boundaries, so that the penalty the
-    discrete problem applies is part of the balance. With a positive gap the
-    contact zone opens at t > 0 and then grows along Gamma_C.
-Removing the contact term from piezo_forms.residual leaves that last load
-unbalanced, and the discrete solution misses the exact one.
+The loads come from the strong form of the equations that piezo_forms
+weakens, with its stress and electric displacement evaluated at the exact
+solution and its exact velocity:
+  f0 = -div sigma, q0 = div D in the body (region_residual),
+  fF = sigma n, qF = -D.n on every exterior facet (exterior_loads; on
+    Dirichlet boundaries the rows are replaced by the boundary values, so
+    these are never felt there),
+  plus p(u.nu - g) nu on the contact facets (contact_loads), so that the
+    penalty the discrete problem applies is part of the balance. With a
+    positive gap the contact zone opens at t > 0 and then grows along
+    Gamma_C.
+A manufactured run has one material (the exterior loads use it). Weakening
+the contact term of piezo_forms.contact_residual leaves the foundation's
+load unbalanced, and the discrete solution misses the exact one.
 """
 
 import piezo_forms as pf
@@ -37,7 +41,7 @@ QUADRATURE_DEGREE = 4
 
 
 def constant_shapes():
-    """The Constants the manufactured forms add to piezo_forms'."""
+    """The Constants the manufactured forms add to piezo_forms' (any d)."""
     return {
         "t": (),             # time of the step (s)
         "space_smooth": (),  # 1: add the trigonometric part of U, Phi; 0: linear
@@ -47,12 +51,22 @@ def constant_shapes():
 
 def space_profile(X, data):
     """U(x), Phi(x): linear, plus the smooth part when space_smooth = 1."""
-    x, y = X[0], X[1]
-    s, pi = data["space_smooth"], ufl.pi
-    U = (ufl.as_vector([0.5 * x + 0.25 * y, 0.5 - x + 0.3 * y])
-         + s * ufl.as_vector([0.5 * ufl.sin(pi * x) * ufl.cos(pi * y),
-                              0.3 * ufl.cos(pi * x) * ufl.sin(pi * y) - 0.2 * ufl.sin(pi * x)]))
-    Phi = 0.3 + 0.5 * x - 0.4 * y + s * 0.5 * ufl.sin(pi * x) * ufl.cos(pi * y)
+    s, pi, sin, cos = data["space_smooth"], ufl.pi, ufl.sin, ufl.cos
+    if X.ufl_shape[0] == 2:
+        x, y = X[0], X[1]
+        U = (ufl.as_vector([0.5 * x + 0.25 * y, 0.5 - x + 0.3 * y])
+             + s * ufl.as_vector([0.5 * sin(pi * x) * cos(pi * y),
+                                  0.3 * cos(pi * x) * sin(pi * y) - 0.2 * sin(pi * x)]))
+        Phi = 0.3 + 0.5 * x - 0.4 * y + s * 0.5 * sin(pi * x) * cos(pi * y)
+        return U, Phi
+    x, y, z = X[0], X[1], X[2]
+    U = (ufl.as_vector([0.5 * x + 0.25 * y - 0.1 * z, 0.5 - x + 0.3 * y + 0.2 * z,
+                        0.2 * x - 0.15 * y + 0.4 * z])
+         + s * ufl.as_vector([0.5 * sin(pi * x) * cos(pi * y) * cos(pi * z),
+                              0.3 * cos(pi * x) * sin(pi * y) - 0.2 * sin(pi * x) * cos(pi * z),
+                              0.25 * sin(pi * y) * sin(pi * z) + 0.1 * cos(pi * x)]))
+    Phi = (0.3 + 0.5 * x - 0.4 * y + 0.2 * z
+           + s * 0.5 * sin(pi * x) * cos(pi * y) * cos(pi * z))
     return U, Phi
 
 
@@ -71,32 +85,54 @@ def exact_solution(mesh, data):
     return u, PHI0 * theta * Phi, ufl.diff(u, t)
 
 
-def loads(y, ds, data, law=pf.p):
-    """The body force, charge, tractions, surface charges and the foundation's
-    pressure of the exact solution, as a linear form in the test function y."""
-    mesh = y.ufl_domain()
-    w, psi = ufl.split(y)
-    n = ufl.FacetNormal(mesh)
-    dx = ufl.dx(domain=mesh, degree=QUADRATURE_DEGREE)
-    ds_all = ds(degree=QUADRATURE_DEGREE)  # no subdomain id: every exterior facet
+def _exact_fields(mesh, mat, data):
     u, phi, u_dot = exact_solution(mesh, data)
-    sigma = pf.voigt_to_tensor(pf.stress_voigt(u, u_dot, phi, data))
-    D = pf.electric_displacement(u, phi, data)
-    body = ufl.inner(-ufl.div(sigma), w) * dx + ufl.div(D) * psi * dx
-    surface = ufl.inner(ufl.dot(sigma, n), w) * ds_all - ufl.dot(D, n) * psi * ds_all
-    return body + surface + pf.contact_term(u, w, n, ds, data, law)
+    return u, pf.voigt_to_tensor(pf.stress_voigt(u, u_dot, phi, mat)), pf.electric_displacement(u, phi, mat)
 
 
-def applied_loads(y, ds, data, law=pf.p):
-    """Every load of a manufactured run (the config's are zero): the scale
-    of its forces."""
-    return pf.applied_loads(y, ds, data) + loads(y, ds, data, law)
+def body_loads(y, dx, mat, data):
+    """Body force -div sigma and charge div D of the exact solution."""
+    w, psi = ufl.split(y)
+    _, sigma, D = _exact_fields(y.ufl_domain(), mat, data)
+    dxq = dx(degree=QUADRATURE_DEGREE)
+    return ufl.inner(-ufl.div(sigma), w) * dxq + ufl.div(D) * psi * dxq
 
 
-def residual(x, x_prev, y, ds, data, law=pf.p):
-    """The model's residual with the loads of the exact solution. Its
-    Jacobian is piezo_forms' (the loads do not depend on x)."""
-    return pf.residual(x, x_prev, y, ds, data, law) - loads(y, ds, data, law)
+def exterior_loads(y, ds, mat, data):
+    """Traction sigma n and surface charge -D.n of the exact solution on the
+    exterior facets of ds."""
+    w, psi = ufl.split(y)
+    n = ufl.FacetNormal(y.ufl_domain())
+    _, sigma, D = _exact_fields(y.ufl_domain(), mat, data)
+    dsq = ds(degree=QUADRATURE_DEGREE)
+    return ufl.inner(ufl.dot(sigma, n), w) * dsq - ufl.dot(D, n) * psi * dsq
+
+
+def contact_loads(y, ds, data, law=pf.p):
+    """The foundation's pressure at the exact solution, on the contact facets."""
+    w, _ = ufl.split(y)
+    u, _, _ = exact_solution(y.ufl_domain(), data)
+    return pf.contact_term(u, w, ufl.FacetNormal(y.ufl_domain()), ds, data, law)
+
+
+def region_residual(x, x_prev, y, dx, mat, data):
+    """piezo_forms' bulk term with the body loads of the exact solution."""
+    return pf.region_residual(x, x_prev, y, dx, mat, data) - body_loads(y, dx, mat, data)
+
+
+def contact_residual(x, y, ds, data, law=pf.p):
+    """piezo_forms' contact term minus the exact solution's contact load."""
+    return pf.contact_residual(x, y, ds, data, law) - contact_loads(y, ds, data, law)
+
+
+def residual(x, x_prev, y, dx, ds, mat, contact, data, law=pf.p):
+    """The whole residual of a manufactured run (one material) as one UFL
+    form; `contact` lists the contact facet tags. Its Jacobian is
+    piezo_forms' (the loads do not depend on x)."""
+    F = region_residual(x, x_prev, y, dx, mat, data) - exterior_loads(y, ds, mat, data)
+    if contact:
+        F += contact_residual(x, y, ds(tuple(contact)), data, law)
+    return F
 
 
 def squared_errors(x, data):

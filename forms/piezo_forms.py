@@ -2,25 +2,29 @@
 
 Backward-Euler weak form (3.3)-(3.4) of Barboteu, Fernandez & Ouafik (2008)
 for the frictionless contact of a viscoelastic piezoelectric body with a
-normal-compliance foundation, plane strain, unknowns x = (u, phi).
+normal-compliance foundation, unknowns x = (u, phi), in d = 2 (plane strain)
+or d = 3 dimensions: every function here reads d from its arguments.
 
 This module is the single source of truth for every term. It is used twice:
-  * `piezo_contact.ufl` calls it with UFL Coefficients/Constants, and ffcx
-    compiles the result into C kernels for the executable `piezo-contact`;
+  * the .ufl entry points (`entry_points.py`) call it with UFL Coefficients
+    and Constants, and ffcx compiles the result into C kernels for the
+    executable `piezo-contact`, once per cell type;
   * the Python package (JIT, `python/piezocontact/model.py`) calls it with
     dolfinx Functions/Constants, and dolfinx JIT-compiles the very same
     expressions, solved by the C++ loop (`python3 -m piezocontact`) or by
     the reference engine (`--engine reference`).
-All material data, loads and the time step are Constants (runtime data).
-Changing the law `p` or adding a term is an edit here (and a rebuild of the
-executable); from Python, the law can also be passed in (`law=`).
+
+The residual is a sum of terms, each integrated over one piece of the mesh
+with its own data: the bulk of each region (cells) with its material, the
+loads of each named boundary (facets), and the contact boundary. A term is
+compiled once and instantiated per piece, so neither regions nor
+boundaries are limited in number. All material data, loads and the time
+step are Constants (runtime data). Changing the law `p` or adding a term is
+an edit here (and a rebuild of the executable); from Python, the law can
+also be passed in (`law=`).
 """
 
 import ufl
-
-# Facet tags 1..MAX_BOUNDARIES carry the named boundaries of the config (in
-# sorted name order); per-boundary data are arrays of this length.
-MAX_BOUNDARIES = 8
 
 # One quadrature rule for every integral of the contact pressure. UFL would
 # pick degree 2 for p (w.n) but 1 for p n_i, and with the kink of max(r, 0)
@@ -29,15 +33,36 @@ MAX_BOUNDARIES = 8
 CONTACT_QUADRATURE_DEGREE = 2
 
 
+def voigt_size(d):
+    """Length of a Voigt strain vector in d dimensions."""
+    return {2: 3, 3: 6}[d]
+
+
 def p(r, c_p):
     """Normal compliance law (4.3): the penalty p(r) = c_p max(r, 0)."""
     return c_p * ufl.max_value(r, 0)
 
 
+# Voigt index pairs: [xx, yy, xy] in 2D (plane strain), [xx, yy, zz, yz, xz,
+# xy] in 3D, engineering shears (2 eps_ij) in the strain vector
+VOIGT_PAIRS = {2: [(0, 0), (1, 1), (0, 1)],
+               3: [(0, 0), (1, 1), (2, 2), (1, 2), (0, 2), (0, 1)]}
+
+
 def strain_voigt(v):
-    """Voigt strain [eps_xx, eps_yy, 2 eps_xy] of a plane displacement."""
+    """Voigt strain of a displacement v (engineering shears)."""
     eps = ufl.sym(ufl.grad(v))
-    return ufl.as_vector([eps[0, 0], eps[1, 1], 2 * eps[0, 1]])
+    return ufl.as_vector([eps[i, j] if i == j else 2 * eps[i, j]
+                          for i, j in VOIGT_PAIRS[v.ufl_shape[0]]])
+
+
+def voigt_to_tensor(s):
+    """The symmetric d x d tensor of a Voigt stress s."""
+    d = {3: 2, 6: 3}[s.ufl_shape[0]]
+    entry = {}
+    for a, (i, j) in enumerate(VOIGT_PAIRS[d]):
+        entry[i, j] = entry[j, i] = s[a]
+    return ufl.as_matrix([[entry[i, j] for j in range(d)] for i in range(d)])
 
 
 def velocity(u, u_prev, data):
@@ -45,21 +70,16 @@ def velocity(u, u_prev, data):
     return (u - u_prev) / data["k"]
 
 
-def stress_voigt(u, u_dot, phi, data):
-    """Total stress (2.1) in Voigt form [s_xx, s_yy, s_xy]:
-    Bv s(u) + Av s(u_dot) + e^T grad phi, u_dot the velocity."""
-    return (ufl.dot(data["Bv"], strain_voigt(u)) + ufl.dot(data["Av"], strain_voigt(u_dot))
-            + ufl.dot(ufl.transpose(data["e"]), ufl.grad(phi)))
+def stress_voigt(u, u_dot, phi, mat):
+    """Total stress (2.1) in Voigt form: Bv s(u) + Av s(u_dot) + e^T grad phi,
+    u_dot the velocity, mat a region's material."""
+    return (ufl.dot(mat["Bv"], strain_voigt(u)) + ufl.dot(mat["Av"], strain_voigt(u_dot))
+            + ufl.dot(ufl.transpose(mat["e"]), ufl.grad(phi)))
 
 
-def voigt_to_tensor(s):
-    """The symmetric 2x2 tensor of a Voigt stress [s_xx, s_yy, s_xy]."""
-    return ufl.as_matrix([[s[0], s[2]], [s[2], s[1]]])
-
-
-def electric_displacement(u, phi, data):
+def electric_displacement(u, phi, mat):
     """Electric displacement (2.2): D = e s(u) - beta grad phi."""
-    return ufl.dot(data["e"], strain_voigt(u)) - ufl.dot(data["beta"], ufl.grad(phi))
+    return ufl.dot(mat["e"], strain_voigt(u)) - ufl.dot(mat["beta"], ufl.grad(phi))
 
 
 def gap_function(u, n, data):
@@ -72,48 +92,44 @@ def contact_pressure(u, n, data, law=p):
     return law(gap_function(u, n, data), data["c_p"])
 
 
-def residual(x, x_prev, y, ds, data, law=p):
-    """Residual F(x; y) of (3.3)-(3.4) at the new time level.
-
-    x, x_prev: mixed (u, phi) at t_n and t_{n-1}; y: mixed test function;
-    ds: exterior-facet measure whose subdomain ids are 1..MAX_BOUNDARIES.
-    data: dict of Constants, see `constant_shapes`; law(r, c_p): the
-    normal compliance law.
-    """
+def region_residual(x, x_prev, y, dx, mat, data):
+    """The bulk of (3.3)-(3.4) on one region (dx: its cells) with its
+    material: viscous + elastic + piezoelectric stress against the strain of
+    the test function, permittivity - coupling against grad psi (with the
+    right-hand side of (2.19) as the paper writes it), minus the body loads."""
     u, phi = ufl.split(x)
     u_prev, _ = ufl.split(x_prev)
     w, psi = ufl.split(y)
-    n = ufl.FacetNormal(x.ufl_domain())
-    dx = ufl.dx(domain=x.ufl_domain())
-
-    # (3.3): viscous + elastic + piezoelectric coupling = body force
-    F = ufl.inner(stress_voigt(u, velocity(u, u_prev, data), phi, data), strain_voigt(w)) * dx
-    # (3.4): permittivity - piezoelectric coupling = free charge, with the
-    # right-hand side of (2.19) as the paper writes it
-    F += ufl.inner(ufl.dot(data["beta"], ufl.grad(phi)), ufl.grad(psi)) * dx
-    F -= ufl.inner(ufl.dot(data["e"], strain_voigt(u)), ufl.grad(psi)) * dx
-    return F - applied_loads(y, ds, data) + contact_term(u, w, n, ds, data, law)
+    F = ufl.inner(stress_voigt(u, velocity(u, u_prev, data), phi, mat), strain_voigt(w)) * dx
+    F += ufl.inner(ufl.dot(mat["beta"], ufl.grad(phi)), ufl.grad(psi)) * dx
+    F -= ufl.inner(ufl.dot(mat["e"], strain_voigt(u)), ufl.grad(psi)) * dx
+    return F - body_loads(y, dx, data)
 
 
-def applied_loads(y, ds, data):
-    """The loads of (3.3)-(3.4) as a linear form in the test function y: body
-    force, free charge, tractions and surface charges. Assembled alone, its
-    size is the scale of the forces in play (the solvers' force balance)."""
+def body_loads(y, dx, data):
+    """Body force f0 and free charge q0 on the cells of dx."""
     w, psi = ufl.split(y)
-    dx = ufl.dx(domain=y.ufl_domain())
-    L = ufl.inner(data["f0"], w) * dx + data["q0"] * psi * dx
-    for s in range(MAX_BOUNDARIES):
-        traction = ufl.as_vector([data["fF"][s, 0], data["fF"][s, 1]])
-        L += ufl.inner(traction, w) * ds(s + 1) + data["qF"][s] * psi * ds(s + 1)
-    return L
+    return ufl.inner(data["f0"], w) * dx + data["q0"] * psi * dx
+
+
+def boundary_loads(y, ds, load):
+    """Traction fF and surface charge qF of one named boundary (ds: its
+    facets). Its residual term is minus this."""
+    w, psi = ufl.split(y)
+    return ufl.inner(load["fF"], w) * ds + load["qF"] * psi * ds
 
 
 def contact_term(u, w, n, ds, data, law=p):
-    """j(u, w) of (2.18): normal compliance on the boundaries switched on as
-    contact (chi = 1). Assembled alone, minus it is the nodal force of the
-    foundation on the body."""
-    return sum(data["chi"][s] * contact_pressure(u, n, data, law) * ufl.dot(w, n)
-               * ds(s + 1, degree=CONTACT_QUADRATURE_DEGREE) for s in range(MAX_BOUNDARIES))
+    """j(u, w) of (2.18), normal compliance on the contact facets of ds.
+    Assembled alone, minus it is the nodal force of the foundation."""
+    return contact_pressure(u, n, data, law) * ufl.dot(w, n) * ds(degree=CONTACT_QUADRATURE_DEGREE)
+
+
+def contact_residual(x, y, ds, data, law=p):
+    """The contact term of the residual (ds: the contact facets)."""
+    u, _ = ufl.split(x)
+    w, _ = ufl.split(y)
+    return contact_term(u, w, ufl.FacetNormal(x.ufl_domain()), ds, data, law)
 
 
 def jacobian(F, x, dx_trial):
@@ -121,38 +137,51 @@ def jacobian(F, x, dx_trial):
     return ufl.derivative(F, x, dx_trial)
 
 
-def contact_jacobian(x, y, dx_trial, ds, data, law=p):
-    """The derivative of contact_term alone: the only part of the Jacobian
-    that depends on the state (the bulk is linear)."""
-    u, _ = ufl.split(x)
-    w, _ = ufl.split(y)
-    n = ufl.FacetNormal(x.ufl_domain())
-    return ufl.derivative(contact_term(u, w, n, ds, data, law), x, dx_trial)
-
-
 def contact_force(x, ds, data, i, law=p):
     """Component i of the resultant force of the foundation on the body,
-    -int_{Gamma_C} p(u.nu - g) nu ds (N/m per unit thickness)."""
+    -int_{Gamma_C} p(u.nu - g) nu ds (N/m per unit thickness in 2D, N in 3D)."""
     u, _ = ufl.split(x)
     n = ufl.FacetNormal(x.ufl_domain())
-    return sum(-data["chi"][s] * contact_pressure(u, n, data, law) * n[i]
-               * ds(s + 1, degree=CONTACT_QUADRATURE_DEGREE) for s in range(MAX_BOUNDARIES))
+    return -contact_pressure(u, n, data, law) * n[i] * ds(degree=CONTACT_QUADRATURE_DEGREE)
 
 
-def constant_shapes():
-    """Names and shapes of the runtime Constants of the forms."""
-    m = MAX_BOUNDARIES
+def residual(x, x_prev, y, dx, ds, regions, boundaries, contact, data, law=p):
+    """The whole residual as one UFL form (the reference engine's view):
+    dx/ds carry the cell/facet tags, `regions` maps a cell tag to its
+    material, `boundaries` a facet tag to its loads, `contact` lists the
+    contact facet tags."""
+    F = sum(region_residual(x, x_prev, y, dx(tag), mat, data) for tag, mat in regions.items())
+    F -= sum(boundary_loads(y, ds(tag), load) for tag, load in boundaries.items())
+    if contact:
+        F += contact_residual(x, y, ds(tuple(contact)), data, law)
+    return F
+
+
+def constant_shapes(d):
+    """Names and shapes of the Constants shared by every term (d dimensions)."""
     return {
-        "Bv": (3, 3),      # elastic tensor, Voigt (Pa)
-        "Av": (3, 3),      # viscosity tensor, Voigt (Pa s)
-        "e": (2, 3),       # piezoelectric tensor (C/m^2), rows x,y
-        "beta": (2, 2),    # permittivity (C^2/(N m^2)), positive definite
-        "c_p": (),         # surface stiffness of the foundation (N/m^3)
-        "g": (),           # initial gap along nu (m)
-        "k": (),           # time step (s)
-        "f0": (2,),        # body force (N/m^3)
-        "q0": (),          # free charge density (C/m^3)
-        "fF": (m, 2),      # traction on boundary slot s (N/m^2)
-        "qF": (m,),        # surface charge on boundary slot s (C/m^2)
-        "chi": (m,),       # 1 if boundary slot s is contact, else 0
+        "c_p": (),      # surface stiffness of the foundation (N/m^3)
+        "g": (),        # initial gap along nu (m)
+        "k": (),        # time step (s)
+        "f0": (d,),     # body force (N/m^3)
+        "q0": (),       # free charge density (C/m^3)
+    }
+
+
+def material_shapes(d):
+    """The Constants of one region's material (Voigt, see VOIGT_PAIRS)."""
+    m = voigt_size(d)
+    return {
+        "Bv": (m, m),     # elastic tensor (Pa)
+        "Av": (m, m),     # viscosity tensor (Pa s)
+        "e": (d, m),      # piezoelectric tensor (C/m^2), rows: D components
+        "beta": (d, d),   # permittivity (C^2/(N m^2)), positive definite
+    }
+
+
+def load_shapes(d):
+    """The Constants of one named boundary's loads."""
+    return {
+        "fF": (d,),     # traction (N/m^2)
+        "qF": (),       # surface charge (C/m^2)
     }

@@ -77,10 +77,21 @@ Engine engine(const std::optional<PyEngine>& e)
 
 void declare_model(py::module& m)
 {
-  py::class_<NamedMesh>(m, "NamedMesh", "A mesh with facet tags of named boundaries")
+  py::class_<NamedMesh>(m, "NamedMesh",
+                        "A mesh with its named boundaries (facet tags) and regions (cell tags)")
       .def_readonly("mesh", &NamedMesh::mesh)
       .def_readonly("facet_tags", &NamedMesh::facet_tags)
-      .def_readonly("tag_of", &NamedMesh::tag_of);
+      .def_readonly("cell_tags", &NamedMesh::cell_tags)
+      .def_readonly("tag_of", &NamedMesh::tag_of)
+      .def_readonly("region_of", &NamedMesh::region_of)
+      .def("boundary_facets", &NamedMesh::boundary_facets, py::arg("name"))
+      .def("region_cells", &NamedMesh::region_cells, py::arg("name"));
+
+  py::class_<RegionFields>(m, "RegionFields", "The cell-wise output of one region")
+      .def(py::init<>())
+      .def_readwrite("cells", &RegionFields::cells)
+      .def_readwrite("electric_displacement", &RegionFields::electric_displacement)
+      .def_readwrite("stress", &RegionFields::stress);
 
   py::class_<Model>(m, "Model", "The dolfinx objects of a run (model.h)")
       .def(py::init<>())
@@ -89,12 +100,14 @@ void declare_model(py::module& m)
       .def_readwrite("x", &Model::x)
       .def_readwrite("x_prev", &Model::x_prev)
       .def_readwrite("constants", &Model::constants)
+      .def_readwrite("materials", &Model::materials)
+      .def_readwrite("loads", &Model::loads)
+      .def_readwrite("contact_facets", &Model::contact_facets)
       .def_readwrite("F", &Model::F)
       .def_readwrite("J", &Model::J)
       .def_readwrite("J_contact", &Model::J_contact)
       .def_readwrite("contact_force", &Model::contact_force)
-      .def_readwrite("electric_displacement", &Model::electric_displacement)
-      .def_readwrite("stress", &Model::stress)
+      .def_readwrite("fields", &Model::fields)
       .def_readwrite("u_exact", &Model::u_exact)
       .def_readwrite("phi_exact", &Model::phi_exact)
       .def_readwrite("squared_errors", &Model::squared_errors)
@@ -283,11 +296,13 @@ PYBIND11_MODULE(cpp, m)
       "facet tags and its NAME.boundaries.json");
   m.def(
       "set_constants",
-      [](const std::string& cfg, const std::map<std::string, int>& tag_of,
-         const ConstantMap& constants, const std::string& source)
-      { set_constants(json::parse(cfg), tag_of, constants, source); },
-      py::arg("cfg"), py::arg("tag_of"), py::arg("constants"), py::arg("source") = "config",
-      "Fill the forms' Constants from a validated config");
+      [](const std::string& cfg, const ConstantMap& constants,
+         const std::map<std::string, ConstantMap>& materials,
+         const std::map<std::string, ConstantMap>& loads, const std::string& source)
+      { set_constants(json::parse(cfg), constants, materials, loads, source); },
+      py::arg("cfg"), py::arg("constants"), py::arg("materials"), py::arg("loads"),
+      py::arg("source") = "config",
+      "Fill the Constants of the forms from a validated config (config.h)");
   m.def(
       "resumable_summary",
       [](const std::string& dir, const std::vector<std::string>& overrides,

@@ -46,7 +46,7 @@ CASES = {
     "mesh script missing": (CONTACTOR, ["mesh.geometry=nope.py"],
                             "mesh.geometry = \"nope.py\": no such file"),
     "mesh file unreadable": (SQUARE, ["mesh={\"type\":\"xdmf\",\"path\":\"BROKEN\"}"],
-                             "mesh: cannot read a triangle mesh \"mesh\" with facet tags"),
+                             "mesh: cannot read a mesh \"mesh\" with facet tags"),
     "unknown boundary name": (SQUARE, ["boundaries.lft={}"],
                               "boundaries.lft: the mesh has no boundary 'lft' "
                               "(it has: bottom, left, right, top)"),
@@ -94,7 +94,7 @@ CASES = {
     "missing required key": ("NO_CP", [], "contact.c_p: missing required key"),
     "Dirichlet value neither numbers nor \"exact\"": (
         SQUARE, ["boundaries.left.displacement=5"],
-        "boundaries.left.displacement = 5: expected a list of 2 numbers or \"exact\""),
+        "boundaries.left.displacement = 5: expected a list of 2 numbers, null for a free component (the mesh is 2D) or \"exact\""),
     "\"exact\" without a manufactured solution": (
         SQUARE, ["boundaries.left.potential=exact"],
         "boundaries.left.potential = \"exact\": needs the key manufactured "

@@ -1,6 +1,8 @@
 #include "compiled_model.h"
-#include "manufactured.h"  // ffcx's, from forms/manufactured.ufl
-#include "piezo_contact.h" // ffcx's, from forms/piezo_contact.ufl
+#include "manufactured_2d.h"  // ffcx's, from forms/manufactured_2d.ufl
+#include "manufactured_3d.h"
+#include "piezo_contact_2d.h" // ffcx's, from forms/piezo_contact_2d.ufl
+#include "piezo_contact_3d.h"
 #include "piezo_forms_meta.h"
 
 #include <dolfinx/fem/utils.h>
@@ -15,18 +17,83 @@ namespace
 {
 using Coefficients = std::map<std::string, std::shared_ptr<const fem::Function<double>>>;
 using Constants = std::map<std::string, std::shared_ptr<const fem::Constant<double>>>;
-using Shapes = std::map<std::string, std::vector<std::size_t>>;
+using Tags = std::shared_ptr<mesh::MeshTags<std::int32_t>>;
 
-void add_constants(ConstantMap& constants, const Shapes& shapes)
+/// The ahead-of-time forms of one cell type (see forms/entry_points.py)
+struct Kernels
 {
+  ufcx_function_space* (*space)(const char*);
+  ufcx_form *F_region, *J_region, *L_region, *F_boundary, *L_boundary, *F_contact,
+      *J_contact, *boundary_measure;
+  std::vector<ufcx_form*> contact_force;
+  ufcx_expression *electric_displacement, *stress;
+};
+
+/// The terms that differ in a manufactured-solution run
+struct ManufacturedKernels
+{
+  ufcx_form *F_region, *L_region, *F_exterior, *L_exterior, *F_contact, *L_contact;
+  std::map<std::string, ufcx_form*> squared_errors;
+  ufcx_expression *u_exact, *phi_exact;
+};
+
+#define PIEZO_KERNELS(P)                                                                \
+  Kernels                                                                               \
+  {                                                                                     \
+    functionspace_form_##P##_F_region, form_##P##_F_region, form_##P##_J_region,        \
+        form_##P##_L_region, form_##P##_F_boundary, form_##P##_L_boundary,              \
+        form_##P##_F_contact, form_##P##_J_contact, form_##P##_boundary_measure, {},    \
+        expression_##P##_electric_displacement, expression_##P##_stress                 \
+  }
+#define PIEZO_MANUFACTURED(P)                                                           \
+  ManufacturedKernels                                                                   \
+  {                                                                                     \
+    form_##P##_F_region, form_##P##_L_region, form_##P##_F_exterior,                    \
+        form_##P##_L_exterior, form_##P##_F_contact, form_##P##_L_contact,              \
+        {{"u_L2", form_##P##_u_L2},                                                     \
+         {"u_H1", form_##P##_u_H1},                                                     \
+         {"phi_L2", form_##P##_phi_L2},                                                 \
+         {"phi_H1", form_##P##_phi_H1}},                                                \
+        expression_##P##_u_exact, expression_##P##_phi_exact                           \
+  }
+
+Kernels kernels(int d)
+{
+  Kernels k = d == 2 ? PIEZO_KERNELS(piezo_contact_2d) : PIEZO_KERNELS(piezo_contact_3d);
+  k.contact_force = d == 2 ? std::vector{form_piezo_contact_2d_contact_force_x,
+                                         form_piezo_contact_2d_contact_force_y}
+                           : std::vector{form_piezo_contact_3d_contact_force_x,
+                                         form_piezo_contact_3d_contact_force_y,
+                                         form_piezo_contact_3d_contact_force_z};
+  return k;
+}
+
+ManufacturedKernels manufactured_kernels(int d)
+{
+  return d == 2 ? PIEZO_MANUFACTURED(manufactured_2d) : PIEZO_MANUFACTURED(manufactured_3d);
+}
+
+ConstantMap zero_constants(const forms::Shapes& shapes)
+{
+  ConstantMap out;
   for (const auto& [name, shape] : shapes)
   {
     const std::size_t size
         = std::accumulate(shape.begin(), shape.end(), std::size_t(1), std::multiplies{});
     const std::vector<double> zeros(size, 0.0);
-    constants[name] = std::make_shared<fem::Constant<double>>(
-        std::span<const double>(zeros), std::span<const std::size_t>(shape));
+    out[name] = std::make_shared<fem::Constant<double>>(std::span<const double>(zeros),
+                                                        std::span<const std::size_t>(shape));
   }
+  return out;
+}
+
+/// The union of Constant maps, as create_form takes them
+Constants merged(std::initializer_list<const ConstantMap*> maps)
+{
+  Constants out;
+  for (const auto* m : maps)
+    out.insert(m->begin(), m->end());
+  return out;
 }
 } // namespace
 
@@ -35,64 +102,84 @@ Model compiled_model(const NamedMesh& named, const json& cfg)
   Model m;
   m.mesh = named;
   auto mesh = named.mesh;
-  m.W = std::make_shared<fem::FunctionSpace>(
-      fem::create_functionspace(functionspace_form_piezo_contact_F, "x", mesh));
+  const int d = mesh->geometry().dim(), tdim = mesh->topology().dim();
+  const Kernels k = kernels(d);
+  m.W = std::make_shared<fem::FunctionSpace>(fem::create_functionspace(k.space, "x", mesh));
   m.x = std::make_shared<fem::Function<double>>(m.W);
   m.x->name = "x";
   m.x_prev = std::make_shared<fem::Function<double>>(m.W);
   m.x_prev->name = "x_prev";
   const bool manufactured = cfg.contains("manufactured");
-  add_constants(m.constants, forms::constant_shapes);
+  m.constants = zero_constants(forms::constant_shapes(d));
   if (manufactured)
-    add_constants(m.constants, forms::manufactured_constant_shapes);
+    m.constants.merge(zero_constants(forms::manufactured_constant_shapes));
 
   const Coefficients coefficients = {{"x", m.x}, {"x_prev", m.x_prev}};
-  const Constants consts(m.constants.begin(), m.constants.end());
-  const std::map<fem::IntegralType, const mesh::MeshTags<int>*> subdomains
-      = {{fem::IntegralType::exterior_facet, named.facet_tags.get()}};
-  auto form = [&](const ufcx_form& f, int rank)
+  // One term: a form over the entities of `piece` (dx(1) or ds(1))
+  auto form = [&](const ufcx_form* f, int rank, const Constants& constants,
+                  fem::IntegralType type, const Tags& piece)
   {
     std::vector<std::shared_ptr<const fem::FunctionSpace>> spaces(rank, m.W);
-    return std::make_shared<const fem::Form<double>>(
-        fem::create_form<double>(f, spaces, coefficients, consts, subdomains, mesh));
+    return std::make_shared<const fem::Form<double>>(fem::create_form<double>(
+        *f, spaces, coefficients, constants, {{type, piece.get()}}, mesh));
   };
-  auto expression = [&](const ufcx_expression& e, const Coefficients& c)
+  auto expression = [&](const ufcx_expression* e, const Coefficients& c, const Constants& consts)
   {
     return std::make_shared<const fem::Expression<double>>(
-        fem::create_expression<double>(e, c, consts, mesh));
+        fem::create_expression<double>(*e, c, consts, mesh));
   };
-  m.F = form(manufactured ? *form_manufactured_F : *form_piezo_contact_F, 1);
-  m.J = form(*form_piezo_contact_J, 2);
-  m.L = form(manufactured ? *form_manufactured_L : *form_piezo_contact_L, 1);
-  m.J_contact = form(*form_piezo_contact_J_contact, 2);
-  m.contact_force = {form(*form_piezo_contact_contact_force_x, 0),
-                     form(*form_piezo_contact_contact_force_y, 0)};
-  m.electric_displacement = expression(*expression_piezo_contact_electric_displacement,
-                                       coefficients);
-  m.stress = expression(*expression_piezo_contact_stress, coefficients);
-  for (const auto& [name, tag] : named.tag_of)
+  const auto cell = fem::IntegralType::cell, facet = fem::IntegralType::exterior_facet;
+  const Constants shared = merged({&m.constants});
+  const auto mms = manufactured_kernels(d);
+
+  for (const auto& [name, _] : named.region_of)
   {
-    // The form measures the facets tagged 1: tag this boundary's so
-    std::vector<std::int32_t> facets;
-    for (std::size_t i = 0; i < named.facet_tags->indices().size(); ++i)
-      if (named.facet_tags->values()[i] == tag)
-        facets.push_back(named.facet_tags->indices()[i]);
-    const mesh::MeshTags<int> only(mesh, mesh->topology().dim() - 1, facets,
-                                   std::vector<int>(facets.size(), 1));
-    m.boundary_measures[name] = std::make_shared<const fem::Form<double>>(fem::create_form<double>(
-        *form_piezo_contact_boundary_measure, {}, coefficients, consts,
-        {{fem::IntegralType::exterior_facet, &only}}, mesh));
+    auto& material = m.materials[name] = zero_constants(forms::material_shapes(d));
+    const auto cells = named.region_cells(name);
+    const Tags piece = mark(mesh, tdim, cells);
+    const Constants c = merged({&m.constants, &material});
+    m.F.push_back(form(manufactured ? mms.F_region : k.F_region, 1, c, cell, piece));
+    m.J.push_back(form(k.J_region, 2, c, cell, piece));
+    m.L.push_back(form(manufactured ? mms.L_region : k.L_region, 1, c, cell, piece));
+    m.fields.push_back({cells, expression(k.electric_displacement, coefficients, c),
+                        expression(k.stress, coefficients, c)});
+    if (manufactured) // one region (checked): the exact solution's surface loads
+    {
+      m.F.push_back(form(mms.F_exterior, 1, c, facet, nullptr));
+      m.L.push_back(form(mms.L_exterior, 1, c, facet, nullptr));
+    }
   }
+  for (const auto& [name, _] : named.tag_of)
+  {
+    auto& load = m.loads[name] = zero_constants(forms::load_shapes(d));
+    const Tags piece = mark(mesh, tdim - 1, named.boundary_facets(name));
+    const Constants c = merged({&m.constants, &load});
+    m.F.push_back(form(k.F_boundary, 1, c, facet, piece));
+    m.L.push_back(form(k.L_boundary, 1, c, facet, piece));
+    m.boundary_measures[name] = form(k.boundary_measure, 0, {}, facet, piece);
+  }
+  for (const auto& [name, bc] : cfg["boundaries"].items())
+    if (bc.value("contact", false) and named.tag_of.contains(name))
+    {
+      const auto facets = named.boundary_facets(name);
+      m.contact_facets.insert(m.contact_facets.end(), facets.begin(), facets.end());
+    }
+  const Tags contact = mark(mesh, tdim - 1, m.contact_facets);
+  m.F.push_back(form(manufactured ? mms.F_contact : k.F_contact, 1, shared, facet, contact));
+  m.J.push_back(form(k.J_contact, 2, shared, facet, contact));
+  m.J_contact.push_back(m.J.back());
+  if (manufactured)
+    m.L.push_back(form(mms.L_contact, 1, shared, facet, contact));
+  for (const auto* f : k.contact_force)
+    m.contact_force.push_back(form(f, 0, shared, facet, contact));
+
   if (manufactured)
   {
-    // the loads of the exact solution are in its F; the exact fields are
-    // the "exact" Dirichlet data
-    m.u_exact = expression(*expression_manufactured_u_exact, {});
-    m.phi_exact = expression(*expression_manufactured_phi_exact, {});
-    m.squared_errors = {{"u_L2", form(*form_manufactured_u_L2, 0)},
-                        {"u_H1", form(*form_manufactured_u_H1, 0)},
-                        {"phi_L2", form(*form_manufactured_phi_L2, 0)},
-                        {"phi_H1", form(*form_manufactured_phi_H1, 0)}};
+    // the exact fields are the "exact" Dirichlet data
+    m.u_exact = expression(mms.u_exact, {}, shared);
+    m.phi_exact = expression(mms.phi_exact, {}, shared);
+    for (const auto& [name, f] : mms.squared_errors)
+      m.squared_errors[name] = form(f, 0, shared, cell, nullptr);
   }
   return m;
 }

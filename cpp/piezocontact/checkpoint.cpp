@@ -8,7 +8,6 @@ namespace piezocontact
 using namespace dolfinx;
 namespace
 {
-constexpr int columns = 9; // [u_x, u_y, phi] of x_n, x_{n-1}, x_J
 
 /// Input (file) index of the vertex of each local dof (owned and ghost) of a
 /// P1 space: P1 dofs and P1 geometry nodes follow the same cell-local order
@@ -55,12 +54,16 @@ StepState StepState::from_json(const json& j)
 
 StateFile::StateFile(const Problem& problem) : _comm(problem.comm)
 {
-  // Owned dofs first, then ghosts, of u (columns 0, 1) and phi (column 2)
+  // [u_x, u_y, (u_z,) phi] of x_n, x_{n-1}, x_J per vertex: owned dofs
+  // first, then ghosts, of u (columns 0..d-1) and phi (column d)
+  const int d = problem.dim();
+  _width = d + 1;
+  const std::size_t columns = 3 * _width;
   std::vector<std::int32_t> ghost_dofs;
   std::vector<std::int64_t> ghost_slots;
   std::int64_t last = -1;
   for (const auto& [V, dofs, column] :
-       {std::tuple{problem.V_u, &problem.u_dofs, 0}, std::tuple{problem.V_phi, &problem.phi_dofs, 2}})
+       {std::tuple{problem.V_u, &problem.u_dofs, 0}, std::tuple{problem.V_phi, &problem.phi_dofs, d}})
   {
     const auto vertex = input_vertex_of_dofs(*V);
     const int bs = V->dofmap()->index_map_bs();
@@ -119,7 +122,7 @@ void StateFile::write(const std::filesystem::path& path,
   collectively(_comm, rank == 0,
                [&]
                {
-                 std::vector<double> table(_rows * columns);
+                 std::vector<double> table(_rows * 3 * _width);
                  for (std::size_t r = 0; r < counts.size(); ++r)
                  {
                    const std::size_t n = _counts[r];
@@ -127,21 +130,22 @@ void StateFile::write(const std::filesystem::path& path,
                    const std::int64_t* slot = _all_slots.data() + _offsets[r];
                    for (int s = 0; s < 3; ++s)
                      for (std::size_t i = 0; i < n; ++i)
-                       table[slot[i] + 3 * s] = v[s * n + i];
+                       table[slot[i] + _width * s] = v[s * n + i];
                  }
-                 write_npy(path, table, _rows, columns);
+                 write_npy(path, table, _rows, 3 * _width);
                });
 }
 
 void StateFile::read(const std::filesystem::path& path, const States& states) const
 {
   const auto [table, rows, cols] = read_npy(path);
+  const std::size_t columns = 3 * _width;
   if (rows != _rows or cols != columns)
     throw std::runtime_error(path.string() + ": holds " + std::to_string(rows) + " x "
                              + std::to_string(cols) + " values, the mesh needs "
                              + std::to_string(_rows) + " x " + std::to_string(columns));
   for (std::size_t i = 0; i < _dofs.size(); ++i)
     for (int s = 0; s < 3; ++s)
-      states[s][_dofs[i]] = table[_slots[i] + 3 * s];
+      states[s][_dofs[i]] = table[_slots[i] + _width * s];
 }
 } // namespace piezocontact

@@ -48,7 +48,8 @@ public:
 
 private:
   MPI_Comm _comm;
-  std::size_t _rows; ///< largest input vertex index + 1
+  std::size_t _rows;  ///< largest input vertex index + 1
+  std::size_t _width; ///< d + 1: u and phi at one vertex
   /// W-dofs and their table slot (row * 9 + column of x_n): all local ones
   /// (to read), and the owned ones first (to write)
   std::vector<std::int32_t> _dofs;

@@ -98,15 +98,38 @@ json to_doubles(const json& v)
   {
     json out = json::array();
     for (const auto& item : v)
-      out.push_back(to_doubles(item));
+      out.push_back(item.is_null() ? item : to_doubles(item));
     return out;
   }
   return v.get<double>();
 }
 
-// Validate `value` against `rule`; return it with defaults filled in.
+/// The dimensions a value may have: d, or 2 and 3 while d is not known
+std::vector<int> dimensions(int d) { return d ? std::vector{d} : std::vector{2, 3}; }
+
+/// A size of the schema in d dimensions: a number, "d", or "voigt" (the
+/// length of a Voigt strain: 3 in 2D, 6 in 3D)
+std::size_t size_in(const json& size, int d)
+{
+  if (size == "d")
+    return d;
+  if (size == "voigt")
+    return d == 2 ? 3 : 6;
+  return size.get<std::size_t>();
+}
+
+std::string either(const std::vector<std::string>& options)
+{
+  std::string out;
+  for (std::size_t i = 0; i < options.size(); ++i)
+    out += (i == 0 ? "" : i + 1 == options.size() ? " or " : ", ") + options[i];
+  return out;
+}
+
+// Validate `value` against `rule` in d dimensions (0: 2 or 3, not known
+// yet); return it with defaults filled in.
 json check(const json& value, const json& rule, const std::string& path,
-           const std::string& source)
+           const std::string& source, int d)
 {
   const std::string t = rule["type"];
   // a word allowed instead of the value
@@ -121,6 +144,29 @@ json check(const json& value, const json& rule, const std::string& path,
   if (value.is_string() and !is_utf8(value.get<std::string>()))
     wrong("text in UTF-8");
 
+  if (t == "one_of")
+  {
+    // the option of the value's kind (a list or not) judges it
+    for (const auto& option : rule["options"])
+    {
+      const std::string ot = option["type"];
+      const bool list = ot == "vector" or ot == "integers";
+      if (list == value.is_array())
+        return check(value, option, path, source, d);
+    }
+    wrong(rule["expected"].get<std::string>());
+  }
+  if (t == "integers")
+  {
+    const std::size_t n = rule["length"];
+    if (!(value.is_array() and value.size() == n
+          and std::all_of(value.begin(), value.end(),
+                          [](const json& v) { return v.is_number_integer(); })))
+      wrong("a list of " + std::to_string(n) + " integers");
+    for (std::size_t i = 0; i < n; ++i)
+      check_bounds(value[i], rule, path + "[" + std::to_string(i) + "]", source);
+    return value;
+  }
   if (t == "object")
   {
     if (!value.is_object())
@@ -143,9 +189,9 @@ json check(const json& value, const json& rule, const std::string& path,
     for (const auto& [k, sub] : keys.items())
     {
       if (value.contains(k))
-        out[k] = check(value[k], sub, join(path, k), source);
+        out[k] = check(value[k], sub, join(path, k), source, d);
       else if (sub.contains("default"))
-        out[k] = check(sub["default"], sub, join(path, k), source);
+        out[k] = check(sub["default"], sub, join(path, k), source, d);
       else if (sub.value("required", false))
         fail(source, join(path, k) + ": missing required key");
     }
@@ -160,7 +206,7 @@ json check(const json& value, const json& rule, const std::string& path,
     {
       if (!is_utf8(k))
         fail(source, join(path, k) + ": a name in UTF-8 expected");
-      out[k] = check(v, rule["values"], join(path, k), source);
+      out[k] = check(v, rule["values"], join(path, k), source, d);
     }
     return out;
   }
@@ -213,31 +259,62 @@ json check(const json& value, const json& rule, const std::string& path,
   }
   if (t == "vector")
   {
-    const std::size_t n = rule["length"];
-    if (!is_number_list(value, n))
-      wrong("a list of " + std::to_string(n) + " numbers");
-    return to_doubles(value);
+    // "nullable": a component may be null (left free), not all of them
+    const bool nullable = rule.value("nullable", false);
+    auto fits = [&](std::size_t n)
+    {
+      if (!value.is_array() or value.size() != n)
+        return false;
+      std::size_t given = 0;
+      for (const auto& v : value)
+      {
+        if (!(is_number(v) or (nullable and v.is_null())))
+          return false;
+        given += !v.is_null();
+      }
+      return given > 0;
+    };
+    std::vector<std::string> options;
+    for (int dd : dimensions(d))
+    {
+      const std::size_t n = size_in(rule["length"], dd);
+      if (fits(n))
+      {
+        for (std::size_t i = 0; i < n; ++i)
+          if (!value[i].is_null())
+            check_bounds(value[i], rule, path + "[" + std::to_string(i) + "]", source);
+        return to_doubles(value);
+      }
+      options.push_back(std::to_string(n));
+    }
+    wrong("a list of " + either(options) + " numbers"
+          + (nullable ? ", null for a free component" : "")
+          + (rule["length"] == "d" ? d ? " (the mesh is " + std::to_string(d) + "D)" : " (2D or 3D)" : ""));
   }
   if (t == "matrix")
   {
-    const std::size_t r = rule["shape"][0], c = rule["shape"][1];
-    if (!(value.is_array() and value.size() == r
-          and std::all_of(value.begin(), value.end(),
-                          [c](const json& row) { return is_number_list(row, c); })))
+    std::vector<std::string> options;
+    for (int dd : dimensions(d))
     {
-      wrong("a " + std::to_string(r) + "x" + std::to_string(c)
-            + " matrix (list of " + std::to_string(r) + " rows of "
-            + std::to_string(c) + " numbers)");
+      const std::size_t r = size_in(rule["shape"][0], dd), c = size_in(rule["shape"][1], dd);
+      if (value.is_array() and value.size() == r
+          and std::all_of(value.begin(), value.end(),
+                          [c](const json& row) { return is_number_list(row, c); }))
+        return to_doubles(value);
+      options.push_back(std::to_string(r) + "x" + std::to_string(c));
     }
-    return to_doubles(value);
+    wrong("a " + either(options) + " matrix (a list of rows of numbers"
+          + (d ? ", the mesh is " + std::to_string(d) + "D)" : ", 2D or 3D)"));
   }
   if (t == "points")
   {
-    if (!(value.is_array()
+    for (int dd : dimensions(d))
+      if (value.is_array()
           and std::all_of(value.begin(), value.end(),
-                          [](const json& p) { return is_number_list(p, 2); })))
-      wrong("a list of [x, y] points");
-    return to_doubles(value);
+                          [dd](const json& p) { return is_number_list(p, dd); }))
+        return to_doubles(value);
+    wrong(d == 2 ? "a list of [x, y] points" : d == 3 ? "a list of [x, y, z] points"
+                                                      : "a list of [x, y] or of [x, y, z] points");
   }
   throw std::logic_error("schema: unknown type " + t);
 }
@@ -263,8 +340,8 @@ void check_symmetric(const Matrix& m, const std::string& path,
     }
 }
 
-/// Sylvester's criterion (2x2 and 3x3): the leading minors of m scaled to
-/// entries of order 1 (those of 1e-170 I would underflow to 0) are positive
+/// Cholesky factorisation of m scaled to entries of order 1 (those of
+/// 1e-170 I would underflow): every pivot positive
 bool positive_definite(Matrix m)
 {
   double largest = 0.0;
@@ -276,14 +353,22 @@ bool positive_definite(Matrix m)
   for (auto& row : m)
     for (double& v : row)
       v /= largest;
-  std::vector<double> minors = {m[0][0], m[0][0] * m[1][1] - m[0][1] * m[1][0]};
-  if (m.size() == 3)
+  const std::size_t n = m.size();
+  for (std::size_t j = 0; j < n; ++j)
   {
-    minors.push_back(m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
-                     - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
-                     + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]));
+    for (std::size_t k = 0; k < j; ++k)
+      m[j][j] -= m[j][k] * m[j][k];
+    if (!(m[j][j] > 1e-14)) // a pivot at round-off of the largest entry: singular
+      return false;
+    m[j][j] = std::sqrt(m[j][j]);
+    for (std::size_t i = j + 1; i < n; ++i)
+    {
+      for (std::size_t k = 0; k < j; ++k)
+        m[i][j] -= m[i][k] * m[j][k];
+      m[i][j] /= m[j][j];
+    }
   }
-  return std::all_of(minors.begin(), minors.end(), [](double d) { return d > 0; });
+  return true;
 }
 
 void check_spd(const Matrix& m, const std::string& path,
@@ -303,11 +388,15 @@ void check_manufactured(const json& cfg, const std::string& source)
       = "not used with a manufactured solution (its loads come from the exact solution)";
   if (mms)
   {
-    for (const auto& [key, zero] : {std::pair{"body_force", json::array({0.0, 0.0})},
-                                    std::pair{"charge_density", json(0.0)}})
+    for (const char* key : {"body_force", "charge_density"})
     {
+      if (!cfg["loads"].contains(key))
+        continue;
       const json& v = cfg["loads"][key];
-      if (v != zero)
+      const bool zero = v.is_array() ? std::all_of(v.begin(), v.end(),
+                                                   [](const json& c) { return c == 0.0; })
+                                     : v == 0.0;
+      if (!zero)
         fail(source, std::string("loads.") + key + " = " + fmt(v) + ": " + unused);
     }
   }
@@ -338,14 +427,15 @@ void check_semantics(const json& cfg, const std::string& source)
   const json& mesh = cfg["mesh"];
   const std::string type = mesh["type"];
   const std::map<std::string, std::vector<std::string>> needed_by_type
-      = {{"unit_square", {"n"}}, {"gmsh", {"geometry", "size"}}, {"xdmf", {"path"}}};
+      = {{"unit_square", {"n"}}, {"box", {"n", "size"}}, {"gmsh", {"geometry", "size"}},
+         {"xdmf", {"path"}}};
   const auto& needed = needed_by_type.at(type);
   for (const auto& k : needed)
     if (!mesh.contains(k))
       fail(source, "mesh." + k + ": missing required key for mesh.type \""
                        + type + "\"");
   for (const auto& [k, _] : mesh.items())
-    if (k != "type" and k != "diagonal"
+    if (k != "type" and (k != "diagonal" or type != "unit_square")
         and std::find(needed.begin(), needed.end(), k) == needed.end())
       fail(source, "mesh." + k + ": not used with mesh.type \"" + type + "\"");
 
@@ -471,9 +561,17 @@ json configure(json cfg, const std::vector<std::string>& overrides,
 {
   for (const auto& o : overrides)
     apply_override(cfg, o, source);
-  cfg = check(cfg, json::parse(config_schema), "", source);
+  const json& mesh = cfg.is_object() ? cfg.value("mesh", json()) : json();
+  const json type = mesh.is_object() ? mesh.value("type", json()) : json();
+  cfg = check(cfg, json::parse(config_schema), "", source,
+              type == "unit_square" ? 2 : type == "box" ? 3 : 0);
   check_semantics(cfg, source);
   return cfg;
+}
+
+void check_dimension(const json& cfg, int d, const std::string& source)
+{
+  (void)check(cfg, json::parse(config_schema), "", source, d);
 }
 
 void bcast_error(std::string& error, MPI_Comm comm)
@@ -517,7 +615,11 @@ RunSettings run_settings(const json& cfg)
       if (bc["displacement"] == "exact")
         d.displacement_exact = true;
       else
-        d.displacement = bc["displacement"].get<std::vector<double>>();
+      {
+        d.displacement.emplace();
+        for (const auto& c : bc["displacement"])
+          d.displacement->push_back(c.is_null() ? std::nullopt : std::optional(c.get<double>()));
+      }
     }
     if (bc.contains("potential"))
     {
@@ -532,64 +634,69 @@ RunSettings run_settings(const json& cfg)
   return s;
 }
 
-void set_constants(const json& cfg, const std::map<std::string, int>& tag_of,
-                   const ConstantMap& constants, const std::string& source)
+namespace
 {
-  auto set = [&constants](const std::string& name, const json& value)
+/// Fill a Constant from nested lists (row-major) or a number
+void set_value(const ConstantMap& constants, const std::string& name, const json& value)
+{
+  auto& v = constants.at(name)->value;
+  std::size_t i = 0;
+  std::function<void(const json&)> walk = [&](const json& node)
   {
-    auto& v = constants.at(name)->value;
-    std::size_t i = 0;
-    // row-major order of the nested lists
-    std::function<void(const json&)> walk = [&](const json& node)
-    {
-      if (node.is_array())
-        for (const auto& item : node)
-          walk(item);
-      else
-        v.at(i++) = node.get<double>();
-    };
-    walk(value);
-    if (i != v.size())
-      throw std::logic_error(name + ": " + std::to_string(i) + " values for a Constant of "
-                             + std::to_string(v.size()));
+    if (node.is_array())
+      for (const auto& item : node)
+        walk(item);
+    else
+      v.at(i++) = node.get<double>();
   };
-  const std::size_t slots = constants.at("chi")->value.size();
-  if (tag_of.size() > slots)
-    throw ConfigError(source + ": mesh: " + std::to_string(tag_of.size())
-                      + " named boundaries, the forms support " + std::to_string(slots));
-  const json& mat = cfg["material"];
-  set("Bv", mat["elastic"]);
-  set("Av", mat["viscosity"]);
-  set("e", mat["piezoelectric"]);
-  set("beta", mat["permittivity"]);
-  set("c_p", cfg["contact"]["c_p"]);
-  set("g", cfg["contact"]["gap"]);
-  set("k", cfg["time"]["T"].get<double>() / cfg["time"]["steps"].get<double>());
-  set("f0", cfg["loads"]["body_force"]);
-  set("q0", cfg["loads"]["charge_density"]);
-  auto& fF = constants.at("fF")->value;
-  auto& qF = constants.at("qF")->value;
-  auto& chi = constants.at("chi")->value;
-  std::fill(fF.begin(), fF.end(), 0.0);
-  std::fill(qF.begin(), qF.end(), 0.0);
-  std::fill(chi.begin(), chi.end(), 0.0);
-  const std::size_t d = fF.size() / slots;
+  walk(value);
+  if (i != v.size())
+    throw std::logic_error(name + ": " + std::to_string(i) + " values for a Constant of "
+                           + std::to_string(v.size()));
+}
+
+void set_zero(const ConstantMap& constants)
+{
+  for (const auto& [_, c] : constants)
+    std::fill(c->value.begin(), c->value.end(), 0.0);
+}
+} // namespace
+
+void set_constants(const json& cfg, const ConstantMap& constants,
+                   const std::map<std::string, ConstantMap>& materials,
+                   const std::map<std::string, ConstantMap>& loads, const std::string& source)
+{
+  set_zero(constants);
+  set_value(constants, "c_p", cfg["contact"]["c_p"]);
+  set_value(constants, "g", cfg["contact"]["gap"]);
+  set_value(constants, "k", cfg["time"]["T"].get<double>() / cfg["time"]["steps"].get<double>());
+  if (cfg["loads"].contains("body_force"))
+    set_value(constants, "f0", cfg["loads"]["body_force"]);
+  set_value(constants, "q0", cfg["loads"]["charge_density"]);
+  for (const auto& [region, material] : materials)
+  {
+    const json& mat = cfg["material"];
+    set_value(material, "Bv", mat["elastic"]);
+    set_value(material, "Av", mat["viscosity"]);
+    set_value(material, "e", mat["piezoelectric"]);
+    set_value(material, "beta", mat["permittivity"]);
+  }
+  for (const auto& [name, load] : loads)
+    set_zero(load);
   for (const auto& [name, bc] : cfg["boundaries"].items())
   {
-    if (!tag_of.contains(name))
+    if (!loads.contains(name))
     {
       std::string have;
-      for (const auto& [m, _] : tag_of)
+      for (const auto& [m, _] : loads)
         have += (have.empty() ? "" : ", ") + m;
       throw ConfigError(source + ": boundaries." + name + ": the mesh has no boundary '" + name
                         + "' (it has: " + have + ")");
     }
-    const std::size_t s = tag_of.at(name) - 1;
+    const auto& load = loads.at(name);
     if (bc.contains("traction"))
-      for (std::size_t i = 0; i < d; ++i)
-        fF.at(d * s + i) = bc["traction"][i].get<double>();
-    qF.at(s) = bc.value("surface_charge", 0.0);
-    chi.at(s) = bc.value("contact", false) ? 1.0 : 0.0;
+      set_value(load, "fF", bc["traction"]);
+    set_value(load, "qF", bc.value("surface_charge", 0.0));
   }
   if (cfg.contains("manufactured"))
   {

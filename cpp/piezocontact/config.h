@@ -35,6 +35,10 @@ json load_config(const std::string& path,
 json configure(json cfg, const std::vector<std::string>& overrides,
                const std::string& source);
 
+/// Check that every vector and matrix of a validated config has the shape
+/// of d dimensions (known once the mesh is read). Throws ConfigError.
+void check_dimension(const json& cfg, int d, const std::string& source);
+
 /// Throw rank 0's error (if not empty) as the same ConfigError on every
 /// rank, so that none waits for the others. Collective.
 void bcast_error(std::string& error, MPI_Comm comm);
@@ -42,12 +46,14 @@ void bcast_error(std::string& error, MPI_Comm comm);
 /// The typed settings of a validated config (boundaries in sorted order)
 RunSettings run_settings(const json& cfg);
 
-/// Fill the Constants of the forms from a validated config: material, loads,
-/// contact, k = T/steps, per-boundary data in the slots of `tag_of`, and the
-/// switches of a manufactured solution if the forms have them. Throws
-/// ConfigError if the mesh has more named boundaries than the forms' slots.
-void set_constants(const json& cfg, const std::map<std::string, int>& tag_of,
-                   const ConstantMap& constants, const std::string& source);
+/// Fill the Constants of the forms from a validated config: those shared
+/// by every term (contact, k = T/steps, body loads, and the switches of a
+/// manufactured solution if the forms have them), each region's material
+/// and each named boundary's loads (zero where the config gives none).
+/// Throws ConfigError if the config names a boundary the mesh lacks.
+void set_constants(const json& cfg, const ConstantMap& constants,
+                   const std::map<std::string, ConstantMap>& materials,
+                   const std::map<std::string, ConstantMap>& loads, const std::string& source);
 
 /// Nearest key to a misspelt one (empty if none is close); exposed for tests.
 std::string closest_key(const std::string& key,

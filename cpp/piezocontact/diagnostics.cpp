@@ -56,44 +56,67 @@ Probes::Probes(const Problem& problem, const std::vector<std::array<double, 3>>&
   }
 }
 
-std::vector<std::array<double, 3>> Probes::evaluate(const Problem& problem) const
+std::vector<std::vector<double>> Probes::evaluate(const Problem& problem) const
 {
-  std::vector<double> values(3 * points.size(), 0.0);
+  const std::size_t d = problem.dim(), w = d + 1; // [u..., phi] per probe
+  std::vector<double> values(w * points.size(), 0.0);
   if (!_mine.empty())
   {
     std::vector<double> x;
     for (auto i : _mine)
       x.insert(x.end(), points[i].begin(), points[i].end());
     const std::size_t m = _mine.size();
-    std::vector<double> u(2 * m), phi(m);
-    problem.u->eval(x, {m, 3}, _cells, u, {m, 2});
+    std::vector<double> u(d * m), phi(m);
+    problem.u->eval(x, {m, 3}, _cells, u, {m, d});
     problem.phi->eval(x, {m, 3}, _cells, phi, {m, 1});
     for (std::size_t j = 0; j < m; ++j)
     {
-      values[3 * _mine[j]] = u[2 * j];
-      values[3 * _mine[j] + 1] = u[2 * j + 1];
-      values[3 * _mine[j] + 2] = phi[j];
+      std::copy_n(u.begin() + d * j, d, values.begin() + w * _mine[j]);
+      values[w * _mine[j] + d] = phi[j];
     }
   }
   MPI_Allreduce(MPI_IN_PLACE, values.data(), values.size(), MPI_DOUBLE, MPI_SUM,
                 problem.comm);
-  std::vector<std::array<double, 3>> out(points.size());
+  std::vector<std::vector<double>> out(points.size());
   for (std::size_t i = 0; i < points.size(); ++i)
-    out[i] = {values[3 * i], values[3 * i + 1], values[3 * i + 2]};
+    out[i].assign(values.begin() + w * i, values.begin() + w * (i + 1));
   return out;
 }
+
+namespace
+{
+/// Unit normal of a facet (2 vertices in 2D, 3 in 3D) pointing away from
+/// the point c inside its cell
+std::array<double, 3> outward_normal(const std::vector<const double*>& v, const double* c)
+{
+  std::array<double, 3> n;
+  const std::array<double, 3> a = {v[1][0] - v[0][0], v[1][1] - v[0][1], v[1][2] - v[0][2]};
+  if (v.size() == 2)
+    n = {a[1], -a[0], 0.0};
+  else
+  {
+    const std::array<double, 3> b = {v[2][0] - v[0][0], v[2][1] - v[0][1], v[2][2] - v[0][2]};
+    n = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+  }
+  const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  double side = 0.0;
+  for (int i = 0; i < 3; ++i)
+  {
+    n[i] /= len;
+    side += n[i] * (v[0][i] - c[i]);
+  }
+  if (side < 0)
+    for (double& ni : n)
+      ni = -ni;
+  return n;
+}
+} // namespace
 
 ContactGeometry::ContactGeometry(const Problem& problem)
 {
   const auto& mesh = *problem.mesh;
   const int tdim = mesh.topology().dim();
-  const auto& chi = problem.model.constants.at("chi")->value;
-  std::vector<std::int32_t> facets;
-  const auto& idx = problem.model.mesh.facet_tags->indices();
-  const auto& val = problem.model.mesh.facet_tags->values();
-  for (std::size_t i = 0; i < idx.size(); ++i)
-    if (chi.at(val[i] - 1) > 0)
-      facets.push_back(idx[i]);
+  const auto& facets = problem.model.contact_facets;
   mesh.topology_mutable().create_connectivity(tdim - 1, tdim);
   const auto f_to_c = mesh.topology().connectivity(tdim - 1, tdim);
   std::vector<std::int32_t> cells;
@@ -101,25 +124,21 @@ ContactGeometry::ContactGeometry(const Problem& problem)
     cells.push_back(f_to_c->links(f)[0]);
   const auto fgeo = mesh::entities_to_geometry(mesh, tdim - 1, facets, false);
   const auto cgeo = mesh::entities_to_geometry(mesh, tdim, cells, false);
+  const std::size_t nf = tdim, nc = tdim + 1; // vertices of a facet, of a cell
   const auto x = mesh.geometry().x(); // (num_nodes, 3)
   for (std::size_t i = 0; i < facets.size(); ++i)
   {
-    const double* a = &x[3 * fgeo[2 * i]];
-    const double* b = &x[3 * fgeo[2 * i + 1]];
-    double cx = 0, cy = 0;
-    for (int v = 0; v < 3; ++v)
+    std::vector<const double*> v;
+    for (std::size_t j = 0; j < nf; ++j)
+      v.push_back(&x[3 * fgeo[nf * i + j]]);
+    std::array<double, 3> c = {0, 0, 0};
+    for (std::size_t j = 0; j < nc; ++j)
+      for (int k = 0; k < 3; ++k)
+        c[k] += x[3 * cgeo[nc * i + j] + k] / nc;
+    const auto n = outward_normal(v, c.data());
+    for (const double* p : v)
     {
-      cx += x[3 * cgeo[3 * i + v]] / 3.0;
-      cy += x[3 * cgeo[3 * i + v] + 1] / 3.0;
-    }
-    const double tx = b[0] - a[0], ty = b[1] - a[1];
-    const double len = std::sqrt(tx * tx + ty * ty);
-    std::array<double, 2> n = {ty / len, -tx / len};
-    if (n[0] * (a[0] - cx) + n[1] * (a[1] - cy) <= 0)
-      n = {-n[0], -n[1]};
-    for (const double* v : {a, b})
-    {
-      _points.insert(_points.end(), {v[0], v[1], 0.0});
+      _points.insert(_points.end(), p, p + 3);
       _cells.push_back(cells[i]);
       _normals.push_back(n);
     }
@@ -132,11 +151,16 @@ std::optional<double> ContactGeometry::max_normal_gap(const Problem& problem,
   double local = -std::numeric_limits<double>::infinity();
   if (!_cells.empty())
   {
-    const std::size_t m = _cells.size();
-    std::vector<double> u(2 * m);
-    problem.u->eval(_points, {m, 3}, _cells, u, {m, 2});
+    const std::size_t m = _cells.size(), d = problem.dim();
+    std::vector<double> u(d * m);
+    problem.u->eval(_points, {m, 3}, _cells, u, {m, d});
     for (std::size_t j = 0; j < m; ++j)
-      local = std::max(local, u[2 * j] * _normals[j][0] + u[2 * j + 1] * _normals[j][1] - gap);
+    {
+      double un = 0.0;
+      for (std::size_t i = 0; i < d; ++i)
+        un += u[d * j + i] * _normals[j][i];
+      local = std::max(local, un - gap);
+    }
   }
   double largest;
   MPI_Allreduce(&local, &largest, 1, MPI_DOUBLE, MPI_MAX, problem.comm);

@@ -16,8 +16,8 @@ class Probes
 public:
   Probes(const Problem& problem, const std::vector<std::array<double, 3>>& points,
          const std::string& source);
-  /// (u_x, u_y, phi) per probe, identical on all ranks
-  std::vector<std::array<double, 3>> evaluate(const Problem& problem) const;
+  /// (u_x, u_y, (u_z,) phi) per probe, identical on all ranks
+  std::vector<std::vector<double>> evaluate(const Problem& problem) const;
   std::vector<std::array<double, 3>> points;
 
 private:
@@ -36,10 +36,10 @@ public:
 private:
   std::vector<double> _points;  // (n, 3)
   std::vector<std::int32_t> _cells;
-  std::vector<std::array<double, 2>> _normals;
+  std::vector<std::array<double, 3>> _normals;
 };
 
-/// Resultant force of the foundation on the body (N/m)
+/// Resultant force of the foundation on the body (N/m in 2D, N in 3D)
 std::vector<double> contact_force(const Problem& problem);
 
 /// A step is accepted only if its force_imbalance is at most this: the C++

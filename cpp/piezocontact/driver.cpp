@@ -165,8 +165,9 @@ json run_config(const RunRequest& request, MPI_Comm comm, const ModelFactory& ma
     mesh_file = std::filesystem::absolute(*mesh_file);
   const NamedMesh mesh = build_mesh(cfg, comm, mesh_file, request.source);
   check_every_rank_has_cells(mesh, comm, request.source);
+  check_dimension(cfg, mesh.mesh->geometry().dim(), request.source);
   Model model = make_model(mesh, cfg);
-  set_constants(cfg, mesh.tag_of, model.constants, request.source);
+  set_constants(cfg, model.constants, model.materials, model.loads, request.source);
   Problem problem(std::move(model), settings.dirichlet, request.source);
 
   json summary;

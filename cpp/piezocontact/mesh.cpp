@@ -16,9 +16,13 @@ namespace piezocontact
 using namespace dolfinx;
 namespace
 {
-// Built-in unit square: boundary name -> (axis, coordinate)
-const std::map<std::string, std::pair<int, double>> unit_square_sides
-    = {{"bottom", {1, 0.0}}, {"left", {0, 0.0}}, {"right", {0, 1.0}}, {"top", {1, 1.0}}};
+// Built-in meshes: boundary name -> (axis, which end: 0 at 0, 1 at L)
+const std::map<std::string, std::pair<int, int>> box_sides
+    = {{"left", {0, 0}}, {"right", {0, 1}}, {"bottom", {1, 0}},
+       {"top", {1, 1}},  {"back", {2, 0}},  {"front", {2, 1}}};
+
+/// The one region of a mesh without named cell groups
+constexpr const char* whole_body = "body";
 
 // What a mesh-generator child process inherits: not the MPI job's
 // variables, which would make its mpi4py join (and break) this job
@@ -51,7 +55,7 @@ mesh::DiagonalType diagonal_type(const std::string& name)
 }
 
 std::shared_ptr<mesh::MeshTags<std::int32_t>>
-make_tags(std::shared_ptr<mesh::Mesh> m,
+make_tags(std::shared_ptr<mesh::Mesh> m, int dim,
           std::vector<std::pair<std::int32_t, std::int32_t>> tagged)
 {
   std::sort(tagged.begin(), tagged.end()); // MeshTags needs sorted indices
@@ -61,26 +65,40 @@ make_tags(std::shared_ptr<mesh::Mesh> m,
     indices.push_back(f);
     values.push_back(v);
   }
-  return std::make_shared<mesh::MeshTags<std::int32_t>>(m, 1, std::move(indices),
+  return std::make_shared<mesh::MeshTags<std::int32_t>>(m, dim, std::move(indices),
                                                         std::move(values));
 }
 
-NamedMesh unit_square(const json& cfg, MPI_Comm comm)
+/// Every cell (owned and ghost) in one region
+void one_region(NamedMesh& out)
 {
-  NamedMesh out;
-  const std::size_t n = cfg["mesh"]["n"].get<std::size_t>();
-  out.mesh = std::make_shared<mesh::Mesh>(mesh::create_rectangle(
-      comm, {{{0.0, 0.0}, {1.0, 1.0}}}, {n, n}, mesh::CellType::triangle,
-      mesh::GhostMode::shared_facet,
-      diagonal_type(cfg["mesh"]["diagonal"].get<std::string>())));
+  const int tdim = out.mesh->topology().dim();
+  const auto cells = out.mesh->topology().index_map(tdim);
+  std::vector<std::pair<std::int32_t, std::int32_t>> all;
+  for (std::int32_t c = 0; c < cells->size_local() + cells->num_ghosts(); ++c)
+    all.emplace_back(c, 1);
+  out.cell_tags = make_tags(out.mesh, tdim, std::move(all));
+  out.region_of = {{whole_body, 1}};
+}
+
+/// Name the sides of an axis-aligned box [0, L]: facet tags 1, 2, ... in
+/// sorted name order
+void name_sides(NamedMesh& out, const std::array<double, 3>& L)
+{
+  const int d = out.mesh->geometry().dim();
+  std::map<std::string, std::pair<int, int>> sides;
+  for (const auto& [name, side] : box_sides)
+    if (side.first < d)
+      sides[name] = side;
   std::vector<std::pair<std::int32_t, std::int32_t>> tagged;
   int slot = 0;
-  for (const auto& [name, side] : unit_square_sides) // sorted names
+  for (const auto& [name, side] : sides) // sorted names
   {
-    const auto [axis, c] = side;
+    const int axis = side.first;
+    const double c = side.second * L[axis];
     const auto facets = mesh::locate_entities_boundary(
-        *out.mesh, 1,
-        [axis = axis, c = c](const xt::xtensor<double, 2>& X)
+        *out.mesh, d - 1,
+        [axis, c](const xt::xtensor<double, 2>& X)
         {
           xt::xtensor<bool, 1> on(std::array<std::size_t, 1>{X.shape(1)});
           for (std::size_t i = 0; i < X.shape(1); ++i) // as numpy.isclose
@@ -91,7 +109,31 @@ NamedMesh unit_square(const json& cfg, MPI_Comm comm)
     for (auto f : facets)
       tagged.emplace_back(f, slot);
   }
-  out.facet_tags = make_tags(out.mesh, std::move(tagged));
+  out.facet_tags = make_tags(out.mesh, d - 1, std::move(tagged));
+  one_region(out);
+}
+
+NamedMesh unit_square(const json& cfg, MPI_Comm comm)
+{
+  NamedMesh out;
+  const std::size_t n = cfg["mesh"]["n"].get<std::size_t>();
+  out.mesh = std::make_shared<mesh::Mesh>(mesh::create_rectangle(
+      comm, {{{0.0, 0.0}, {1.0, 1.0}}}, {n, n}, mesh::CellType::triangle,
+      mesh::GhostMode::shared_facet,
+      diagonal_type(cfg["mesh"].value("diagonal", std::string("right")))));
+  name_sides(out, {1.0, 1.0, 0.0});
+  return out;
+}
+
+NamedMesh box(const json& cfg, MPI_Comm comm)
+{
+  NamedMesh out;
+  const auto n = cfg["mesh"]["n"].get<std::array<std::size_t, 3>>();
+  const auto L = cfg["mesh"]["size"].get<std::array<double, 3>>();
+  out.mesh = std::make_shared<mesh::Mesh>(
+      mesh::create_box(comm, {{{0.0, 0.0, 0.0}, L}}, n, mesh::CellType::tetrahedron,
+                       mesh::GhostMode::shared_facet));
+  name_sides(out, L);
   return out;
 }
 
@@ -121,17 +163,23 @@ NamedMesh read_xdmf(const std::filesystem::path& file, MPI_Comm comm,
   try
   {
     io::XDMFFile f(comm, file, "r");
+    const auto [cell, degree] = f.read_cell_type("mesh");
+    if ((cell != mesh::CellType::triangle and cell != mesh::CellType::tetrahedron)
+        or degree != 1)
+      throw std::runtime_error("cells of type " + mesh::to_string(cell) + " and degree "
+                               + std::to_string(degree)
+                               + ": only affine triangles and tetrahedra are supported");
     out.mesh = std::make_shared<mesh::Mesh>(f.read_mesh(
-        fem::CoordinateElement(mesh::CellType::triangle, 1),
-        mesh::GhostMode::shared_facet, "mesh"));
-    out.mesh->topology_mutable().create_connectivity(1, 2);
+        fem::CoordinateElement(cell, 1), mesh::GhostMode::shared_facet, "mesh"));
+    const int tdim = out.mesh->topology().dim();
+    out.mesh->topology_mutable().create_connectivity(tdim - 1, tdim);
     const auto file_tags = f.read_meshtags(out.mesh, "facets");
     tag_indices = file_tags.indices();
     tag_values = file_tags.values();
   }
   catch (const std::exception& e) // every rank reads the same file
   {
-    throw ConfigError(source + ": mesh: cannot read a triangle mesh \"mesh\" with facet "
+    throw ConfigError(source + ": mesh: cannot read a mesh \"mesh\" with facet "
                       "tags \"facets\" from " + file.string() + ": " + e.what());
   }
   std::map<std::string, int> sorted;
@@ -148,7 +196,8 @@ NamedMesh read_xdmf(const std::filesystem::path& file, MPI_Comm comm,
   for (std::size_t i = 0; i < tag_indices.size(); ++i)
     if (auto it = slot_of_file_tag.find(tag_values[i]); it != slot_of_file_tag.end())
       tagged.emplace_back(tag_indices[i], it->second);
-  out.facet_tags = make_tags(out.mesh, std::move(tagged));
+  out.facet_tags = make_tags(out.mesh, out.mesh->topology().dim() - 1, std::move(tagged));
+  one_region(out);
   return out;
 }
 } // namespace
@@ -159,7 +208,7 @@ prepare_mesh(const json& cfg, const std::string& source,
 {
   const json& m = cfg["mesh"];
   const std::string type = m["type"];
-  if (type == "unit_square")
+  if (type == "unit_square" or type == "box")
     return std::nullopt;
   const std::string key = type == "gmsh" ? "geometry" : "path";
   const auto path = resolve(m[key].get<std::string>(), source);
@@ -211,7 +260,9 @@ NamedMesh build_mesh(const json& cfg, MPI_Comm comm,
                      const std::optional<std::filesystem::path>& mesh_file,
                      const std::string& source)
 {
-  return mesh_file ? read_xdmf(*mesh_file, comm, source) : unit_square(cfg, comm);
+  if (mesh_file)
+    return read_xdmf(*mesh_file, comm, source);
+  return cfg["mesh"]["type"] == "box" ? box(cfg, comm) : unit_square(cfg, comm);
 }
 
 } // namespace piezocontact

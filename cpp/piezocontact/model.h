@@ -1,6 +1,11 @@
 // The dolfinx objects one run is made of, wherever their kernels come from:
 // ffcx ahead of time (the executable) or dolfinx's JIT (the Python package).
 // The library never builds a form itself; it drives the ones given here.
+//
+// The residual is a sum of terms, each a form integrated over one piece of
+// the mesh with that piece's Constants: the bulk of each region with its
+// material, the loads of each named boundary, the contact facets. Lists of
+// forms are summed, so neither regions nor boundaries are limited in number.
 #pragma once
 
 #include <dolfinx/fem/Constant.h>
@@ -17,16 +22,35 @@
 
 namespace piezocontact
 {
-/// A mesh with its named boundaries: facet tag of boundary name (1-based
-/// slots in sorted name order, the index into per-boundary Constants + 1)
+/// A mesh with its named boundaries (facet tags) and regions (cell tags)
 struct NamedMesh
 {
   std::shared_ptr<dolfinx::mesh::Mesh> mesh;
-  std::shared_ptr<dolfinx::mesh::MeshTags<std::int32_t>> facet_tags;
-  std::map<std::string, int> tag_of;
+  std::shared_ptr<dolfinx::mesh::MeshTags<std::int32_t>> facet_tags, cell_tags;
+  std::map<std::string, int> tag_of;    ///< boundary name -> facet tag
+  std::map<std::string, int> region_of; ///< region name -> cell tag
+
+  /// Local indices of the facets of a boundary / the cells of a region
+  std::vector<std::int32_t> boundary_facets(const std::string& name) const;
+  std::vector<std::int32_t> region_cells(const std::string& name) const;
 };
 
+/// Tags marking `entities` (local indices, any order) of dimension `dim`
+/// with 1: the piece a term of the model is integrated over (dx(1), ds(1))
+std::shared_ptr<dolfinx::mesh::MeshTags<std::int32_t>>
+mark(std::shared_ptr<const dolfinx::mesh::Mesh> mesh, int dim,
+     std::vector<std::int32_t> entities);
+
 using ConstantMap = std::map<std::string, std::shared_ptr<dolfinx::fem::Constant<double>>>;
+using FormList = std::vector<std::shared_ptr<const dolfinx::fem::Form<double>>>;
+
+/// The cell-wise output of one region (its material enters the expressions)
+struct RegionFields
+{
+  std::vector<std::int32_t> cells;
+  /// Electric displacement and Voigt stress at the cell midpoint
+  std::shared_ptr<const dolfinx::fem::Expression<double>> electric_displacement, stress;
+};
 
 struct Model
 {
@@ -35,20 +59,25 @@ struct Model
   std::shared_ptr<const dolfinx::fem::FunctionSpace> W;
   /// The unknown at t_n and the state at t_{n-1}, coefficients of the forms
   std::shared_ptr<dolfinx::fem::Function<double>> x, x_prev;
-  /// Every runtime Constant of the forms, by name (forms/piezo_forms.py
+  /// The Constants shared by every term, by name (forms/piezo_forms.py
   /// constant_shapes); the library sets "k" (and "t" if present) each step
   ConstantMap constants;
+  /// Per region: its material's Constants; per named boundary: its loads'
+  std::map<std::string, ConstantMap> materials, loads;
+  /// Local indices of the contact facets
+  std::vector<std::int32_t> contact_facets;
 
-  /// Residual, its Jacobian, and the contact part of the Jacobian alone
-  /// (only contact facets: J changes between iterates only if it does)
-  std::shared_ptr<const dolfinx::fem::Form<double>> F, J, J_contact;
-  /// The applied loads, a linear form (F = internal forces - L): its size
+  /// Residual terms (summed), Jacobian terms, and the terms of the Jacobian
+  /// that depend on the state (J changes between iterates only if they do)
+  FormList F, J, J_contact;
+  /// The applied loads, linear forms (F = internal forces - L): their size
   /// scales the force balance that accepts a step. Optional.
-  std::shared_ptr<const dolfinx::fem::Form<double>> L;
-  /// Components of the foundation's resultant force on the body (N/m)
-  std::vector<std::shared_ptr<const dolfinx::fem::Form<double>>> contact_force;
-  /// Cell-wise electric displacement and Voigt stress, for output
-  std::shared_ptr<const dolfinx::fem::Expression<double>> electric_displacement, stress;
+  FormList L;
+  /// Components of the foundation's resultant force on the body (N/m in
+  /// 2D, N in 3D)
+  FormList contact_force;
+  /// Cell-wise electric displacement and stress, per region
+  std::vector<RegionFields> fields;
 
   /// Optional exact fields at the Constant "t", for Dirichlet data given as
   /// "exact" (manufactured solutions), and squared error functionals

@@ -2,6 +2,8 @@
 
 #include <dolfinx/fem/assembler.h>
 #include <dolfinx/fem/petsc.h>
+#include <dolfinx/fem/sparsitybuild.h>
+#include <dolfinx/la/SparsityPattern.h>
 #include <dolfinx/la/petsc.h>
 
 namespace piezocontact
@@ -27,12 +29,35 @@ std::vector<double> local_values(Mat M)
   return out;
 }
 
-void assemble_into(Mat M, const fem::Form<double>& a,
+/// A matrix whose sparsity holds every term of a sum of bilinear forms on
+/// V x V (cell and exterior-facet integrals, the kinds the model has)
+Mat create_matrix(const FormList& terms, const fem::FunctionSpace& V)
+{
+  const auto& dofmap = *V.dofmap();
+  const int bs = dofmap.index_map_bs();
+  la::SparsityPattern pattern(V.mesh()->comm(), {dofmap.index_map, dofmap.index_map},
+                              {bs, bs});
+  for (const auto& a : terms)
+  {
+    for (int id : a->integral_ids(fem::IntegralType::cell))
+      fem::sparsitybuild::cells(pattern, a->cell_domains(id), {{dofmap, dofmap}});
+    for (int id : a->integral_ids(fem::IntegralType::exterior_facet))
+      fem::sparsitybuild::exterior_facets(pattern, a->exterior_facet_domains(id),
+                                          {{dofmap, dofmap}});
+    if (!a->integral_ids(fem::IntegralType::interior_facet).empty())
+      throw std::runtime_error("interior-facet terms are not supported by the Jacobian's sparsity");
+  }
+  pattern.assemble();
+  return la::petsc::create_matrix(V.mesh()->comm(), pattern);
+}
+
+void assemble_into(Mat M, const FormList& terms,
                    const std::vector<std::shared_ptr<const fem::DirichletBC<double>>>& bcs,
                    const fem::FunctionSpace& V)
 {
   MatZeroEntries(M);
-  fem::assemble_matrix(la::petsc::Matrix::set_fn(M, ADD_VALUES), a, bcs);
+  for (const auto& a : terms)
+    fem::assemble_matrix(la::petsc::Matrix::set_fn(M, ADD_VALUES), *a, bcs);
   MatAssemblyBegin(M, MAT_FLUSH_ASSEMBLY);
   MatAssemblyEnd(M, MAT_FLUSH_ASSEMBLY);
   fem::set_diagonal<double>(la::petsc::Matrix::set_fn(M, INSERT_VALUES), V, bcs);
@@ -45,9 +70,9 @@ NonlinearSystem::NonlinearSystem(Problem& p, FieldwiseConvergence& monitor, KSP 
                                  bool reuse_lu)
     : b(la::petsc::create_vector(*p.W->dofmap()->index_map, p.W->dofmap()->index_map_bs()),
         false),
-      A(fem::petsc::create_matrix(*p.model.J), false),
+      A(create_matrix(p.model.J, *p.W), false),
       _p(p), _monitor(monitor), _ksp(ksp), _reuse(reuse_lu),
-      _Jc(fem::petsc::create_matrix(*p.model.J_contact), false)
+      _Jc(create_matrix(p.model.J_contact, *p.W), false)
 {
 }
 
@@ -58,8 +83,11 @@ void NonlinearSystem::F(const Vec x, Vec r)
   VecGhostGetLocalForm(r, &r_local);
   VecSet(r_local, 0.0);
   VecGhostRestoreLocalForm(r, &r_local);
-  fem::petsc::assemble_vector(r, *_p.model.F);
-  fem::petsc::apply_lifting(r, {_p.model.J}, {_p.bcs}, {x}, -1.0);
+  for (const auto& term : _p.model.F)
+    fem::petsc::assemble_vector(r, *term);
+  // lifting is linear in the bilinear form: term by term is the sum's
+  for (const auto& term : _p.model.J)
+    fem::petsc::apply_lifting(r, {term}, {_p.bcs}, {x}, -1.0);
   VecGhostUpdateBegin(r, ADD_VALUES, SCATTER_REVERSE);
   VecGhostUpdateEnd(r, ADD_VALUES, SCATTER_REVERSE);
   record_reactions(r);
@@ -84,7 +112,7 @@ void NonlinearSystem::J(const Vec, Mat M)
   bool same = false;
   {
     ScopedTimer timer(contact_jacobian, "contact Jacobian");
-    assemble_into(_Jc.mat(), *_p.model.J_contact, {}, *_p.W);
+    assemble_into(_Jc.mat(), _p.model.J_contact, {}, *_p.W);
     std::vector<double> values = local_values(_Jc.mat());
     const double k = _p.model.constants.at("k")->value[0];
     int equal = _reuse and k == _k_last and values == _Jc_last;
@@ -100,7 +128,7 @@ void NonlinearSystem::J(const Vec, Mat M)
   }
   {
     ScopedTimer timer(jacobian, "Jacobian");
-    assemble_into(M, *_p.model.J, _p.bcs, *_p.W);
+    assemble_into(M, _p.model.J, _p.bcs, *_p.W);
   }
   const auto x = _p.x->x()->array();
   x_assembled.assign(x.begin(), x.end());

@@ -45,21 +45,22 @@ std::string failure_reason(const fs::path& dir, int saved_errno, const std::stri
   return fallback;
 }
 
-/// [x, y, values...] of the owned dofs of a collapsed P1 function, on rank 0
+/// [x, y, (z,) values...] of the owned dofs of a collapsed P1 function, on rank 0
 std::pair<std::vector<double>, std::size_t>
 gather_nodal(const fem::Function<double>& f, MPI_Comm comm)
 {
   const auto& V = *f.function_space();
   const int n = V.dofmap()->index_map->size_local();
   const int bs = V.dofmap()->index_map_bs();
-  const std::size_t cols = 2 + bs;
+  const int d = V.mesh()->geometry().dim();
+  const std::size_t cols = d + bs;
   const auto coords = V.tabulate_dof_coordinates(false); // (num_dofs, 3)
   const auto values = f.x()->array();
   std::vector<double> rows;
   rows.reserve(n * cols);
   for (int i = 0; i < n; ++i)
   {
-    rows.insert(rows.end(), {coords[3 * i], coords[3 * i + 1]});
+    rows.insert(rows.end(), coords.begin() + 3 * i, coords.begin() + 3 * i + d);
     for (int c = 0; c < bs; ++c)
       rows.push_back(values[bs * i + c]);
   }
@@ -254,16 +255,29 @@ Writer::Writer(const Problem& problem, const OutputSettings& settings, const fs:
                });
   if (!_xdmf)
     return;
-  const auto dg0 = basix::create_element(basix::element::family::P,
-                                         basix::cell::type::triangle, 0,
-                                         basix::element::lagrange_variant::unset, true);
   auto mesh = problem.mesh;
+  const int d = mesh->geometry().dim();
+  const auto dg0 = basix::create_element(
+      basix::element::family::P,
+      d == 2 ? basix::cell::type::triangle : basix::cell::type::tetrahedron, 0,
+      basix::element::lagrange_variant::unset, true);
   _D = std::make_shared<fem::Function<double>>(
-      std::make_shared<fem::FunctionSpace>(fem::create_functionspace(mesh, dg0, 2)));
+      std::make_shared<fem::FunctionSpace>(fem::create_functionspace(mesh, dg0, d)));
   _D->name = "D";
-  _stress = std::make_shared<fem::Function<double>>(
-      std::make_shared<fem::FunctionSpace>(fem::create_functionspace(mesh, dg0, 3)));
-  _stress->name = "stress_voigt";
+  _stress = std::make_shared<fem::Function<double>>(std::make_shared<fem::FunctionSpace>(
+      fem::create_functionspace(mesh, dg0, d == 2 ? 3 : 6)));
+  // XDMF has no Voigt vector: one scalar field per component
+  const std::vector<std::string> voigt
+      = d == 2 ? std::vector<std::string>{"xx", "yy", "xy"}
+               : std::vector<std::string>{"xx", "yy", "zz", "yz", "xz", "xy"};
+  for (std::size_t c = 0; c < voigt.size(); ++c)
+  {
+    auto [Vc, map] = _stress->function_space()->sub({int(c)})->collapse();
+    _stress_components.push_back(std::make_shared<fem::Function<double>>(
+        std::make_shared<fem::FunctionSpace>(std::move(Vc))));
+    _stress_components.back()->name = "stress_" + voigt[c];
+    _stress_maps.push_back(std::move(map));
+  }
   if (root)
     _index = std::make_unique<pugi::xml_document>();
   if (resume_step > 0)
@@ -349,8 +363,18 @@ void Writer::load_index(int last_step)
 
 void Writer::write_xdmf_step(int step, double t)
 {
-  _D->interpolate(*_problem.model.electric_displacement);
-  _stress->interpolate(*_problem.model.stress);
+  for (const auto& region : _problem.model.fields) // each with its material
+  {
+    _D->interpolate(*region.electric_displacement, region.cells);
+    _stress->interpolate(*region.stress, region.cells);
+  }
+  const auto all = _stress->x()->array();
+  for (std::size_t c = 0; c < _stress_components.size(); ++c)
+  {
+    auto values = _stress_components[c]->x()->mutable_array();
+    for (std::size_t i = 0; i < values.size(); ++i)
+      values[i] = all[_stress_maps[c][i]];
+  }
   const std::string name = numbered("step_%06d", step);
   const auto step_xdmf = _dir / "solution" / (name + ".xdmf");
   // A new HDF5 file per step, never reopened: an append cut short by a kill
@@ -358,7 +382,9 @@ void Writer::write_xdmf_step(int step, double t)
   write_hdf5(step_xdmf,
              [&](io::XDMFFile& f)
              {
-               for (const auto& fn : {_problem.u, _problem.phi, _D, _stress})
+               for (const auto& fn : {_problem.u, _problem.phi, _D})
+                 f.write_function(*fn, t, "/Xdmf/Domain");
+               for (const auto& fn : _stress_components)
                  f.write_function(*fn, t, "/Xdmf/Domain");
              });
   collectively(_problem.comm, rank_of(_problem.comm) == 0,

@@ -86,5 +86,9 @@ private:
   bool _xdmf;
   std::unique_ptr<pugi::xml_document> _index; ///< rank 0: solution.xdmf
   std::shared_ptr<dolfinx::fem::Function<double>> _D, _stress;
+  /// The stress by Voigt component (scalar, cell-centred in XDMF), and
+  /// where each takes its values in _stress
+  std::vector<std::shared_ptr<dolfinx::fem::Function<double>>> _stress_components;
+  std::vector<std::vector<std::int32_t>> _stress_maps;
 };
 } // namespace piezocontact

@@ -90,9 +90,7 @@ std::map<std::string, std::vector<double>> Problem::reactions() const
 {
   const auto& imap = *W->dofmap()->index_map;
   const int bs = W->dofmap()->index_map_bs();
-  la::Vector<double> r(W->dofmap()->index_map, bs);
-  fem::assemble_vector(r.mutable_array(), *model.F);
-  r.scatter_rev(std::plus<double>());
+  const auto r = assemble(model.F);
   return reactions(r.array().subspan(0, imap.size_local() * bs));
 }
 
@@ -119,20 +117,16 @@ ForceBalance Problem::force_balance(std::span<const double> r) const
 ForceBalance Problem::force_balance() const
 {
   const int bs = W->dofmap()->index_map_bs();
-  la::Vector<double> r(W->dofmap()->index_map, bs);
-  fem::assemble_vector(r.mutable_array(), *model.F);
-  r.scatter_rev(std::plus<double>());
+  const auto r = assemble(model.F);
   return force_balance(r.array().subspan(0, W->dofmap()->index_map->size_local() * bs));
 }
 
 double Problem::applied_load() const
 {
-  if (_applied_load >= 0.0 or !model.L)
+  if (_applied_load >= 0.0 or model.L.empty())
     return std::max(_applied_load, 0.0);
   const int bs = W->dofmap()->index_map_bs();
-  la::Vector<double> L(W->dofmap()->index_map, bs);
-  fem::assemble_vector(L.mutable_array(), *model.L);
-  L.scatter_rev(std::plus<double>());
+  const auto L = assemble(model.L);
   std::vector<std::int32_t> constrained = bc_dofs;
   std::sort(constrained.begin(), constrained.end());
   double local = 0.0;
@@ -145,16 +139,13 @@ double Problem::applied_load() const
   return _applied_load;
 }
 
-std::vector<std::int32_t> Problem::boundary_facets(const std::string& name) const
+la::Vector<double> Problem::assemble(const FormList& terms) const
 {
-  const int tag = model.mesh.tag_of.at(name);
-  std::vector<std::int32_t> facets;
-  const auto& idx = model.mesh.facet_tags->indices();
-  const auto& val = model.mesh.facet_tags->values();
-  for (std::size_t i = 0; i < idx.size(); ++i)
-    if (val[i] == tag)
-      facets.push_back(idx[i]);
-  return facets;
+  la::Vector<double> b(W->dofmap()->index_map, W->dofmap()->index_map_bs());
+  for (const auto& term : terms)
+    fem::assemble_vector(b.mutable_array(), *term);
+  b.scatter_rev(std::plus<double>());
+  return b;
 }
 
 // u and phi Dirichlet conditions on the collapsed sub-spaces (a Constant on a
@@ -173,31 +164,40 @@ void Problem::create_bcs(const std::vector<DirichletSettings>& dirichlet,
       throw ConfigError(source + ": boundaries." + bc.boundary + ": the mesh has no boundary '"
                         + bc.boundary + "' (it has: " + have + ")");
     }
-    const auto facets = boundary_facets(bc.boundary);
+    const auto facets = model.mesh.boundary_facets(bc.boundary);
     if (bc.displacement or bc.displacement_exact)
     {
       std::shared_ptr<fem::Function<double>> g = u_exact; // updated every step
+      const int dim = V_u->dofmap()->index_map_bs();
+      std::vector<bool> fixed(dim, true);
       if (!bc.displacement_exact)
       {
         g = std::make_shared<fem::Function<double>>(V_u);
         auto values = g->x()->mutable_array();
-        const std::size_t d = bc.displacement->size();
-        for (std::size_t i = 0; i < values.size(); ++i)
-          values[i] = (*bc.displacement)[i % d];
+        for (int i = 0; i < dim; ++i)
+        {
+          const auto& c = bc.displacement->at(i);
+          fixed[i] = c.has_value();
+          for (std::size_t j = i; j < values.size(); j += dim)
+            values[j] = c.value_or(0.0);
+        }
       }
       if (!g)
         throw ConfigError(source + ": boundaries." + bc.boundary
                           + ".displacement: \"exact\" needs a manufactured solution");
-      auto dofs = fem::locate_dofs_topological({*W->sub({0}), *V_u}, fdim, facets);
-      bc_dofs.insert(bc_dofs.end(), dofs[0].begin(), dofs[0].end());
-      bcs.push_back(std::make_shared<fem::DirichletBC<double>>(g, std::move(dofs), W->sub({0})));
+      // one condition per fixed component, its values taken from g on V_u
+      // (W->sub({0, i}) is not W.sub(0).sub(i) in 0.5.2: chain single levels)
       auto& comp = clamped_dofs[bc.boundary];
-      for (int i = 0; i < V_u->dofmap()->index_map_bs(); ++i)
+      comp.assign(dim, {});
+      for (int i = 0; i < dim; ++i)
       {
-        const auto Vi = V_u->sub({i})->collapse().first;
-        // W->sub({0, i}) is not W.sub(0).sub(i) in 0.5.2: chain single levels
-        comp.push_back(
-            fem::locate_dofs_topological({*W->sub({0})->sub({i}), Vi}, fdim, facets)[0]);
+        if (!fixed[i])
+          continue; // free: no reaction along it
+        auto Wi = W->sub({0})->sub({i});
+        auto dofs = fem::locate_dofs_topological({*Wi, *V_u->sub({i})}, fdim, facets);
+        comp[i] = dofs[0];
+        bc_dofs.insert(bc_dofs.end(), dofs[0].begin(), dofs[0].end());
+        bcs.push_back(std::make_shared<fem::DirichletBC<double>>(g, std::move(dofs), Wi));
       }
     }
     if (bc.potential or bc.potential_exact)

@@ -9,6 +9,7 @@
 
 #include <array>
 #include <dolfinx/fem/DirichletBC.h>
+#include <dolfinx/la/Vector.h>
 #include <map>
 #include <memory>
 #include <span>
@@ -65,8 +66,9 @@ public:
   /// model's L; 0 without one), assembled once per time. Collective.
   double applied_load() const;
 
-  /// Facets (local indices) of a named boundary
-  std::vector<std::int32_t> boundary_facets(const std::string& name) const;
+  /// A sum of linear forms on W, assembled (ghost contributions added to
+  /// their owners)
+  dolfinx::la::Vector<double> assemble(const FormList& terms) const;
 
   /// Spatial dimension
   int dim() const { return mesh->geometry().dim(); }

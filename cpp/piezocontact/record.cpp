@@ -197,9 +197,11 @@ json Record::accept(StepState state, const SolveReport& report, const StateViews
   const auto values = _probes.evaluate(problem);
   for (std::size_t i = 0; i < values.size(); ++i)
   {
-    step["probes"].push_back({{"point", {_probes.points[i][0], _probes.points[i][1]}},
-                              {"u", {values[i][0], values[i][1]}},
-                              {"phi", values[i][2]}});
+    const std::size_t d = problem.dim();
+    step["probes"].push_back(
+        {{"point", std::vector<double>(_probes.points[i].begin(), _probes.points[i].begin() + d)},
+         {"u", std::vector<double>(values[i].begin(), values[i].begin() + d)},
+         {"phi", values[i][d]}});
   }
   step["contact_force"] = contact_force(problem);
   const auto gap = _contact.max_normal_gap(problem, problem.model.constants.at("g")->value[0]);

@@ -15,7 +15,8 @@ namespace piezocontact
 struct DirichletSettings
 {
   std::string boundary;
-  std::optional<std::vector<double>> displacement; ///< one value per component
+  /// one value per component; an empty one is free (rollers, symmetry planes)
+  std::optional<std::vector<std::optional<double>>> displacement;
   bool displacement_exact = false;
   std::optional<double> potential;
   bool potential_exact = false;

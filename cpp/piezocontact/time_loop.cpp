@@ -53,14 +53,17 @@ void set_field_splits(KSP ksp, const Problem& problem)
     std::sort(global.begin(), global.end());
     IS is;
     ISCreateGeneral(problem.comm, global.size(), global.data(), PETSC_COPY_VALUES, &is);
-    // u comes in (x, y) pairs per node: say so, for nodal AMG on that block
-    bool pairs = std::string(name) == "u" and global.size() % 2 == 0;
-    for (std::size_t i = 0; pairs and i < global.size(); i += 2)
-      pairs = global[i + 1] == global[i] + 1 and global[i] % 1 == 0;
-    int all_pairs = pairs;
-    MPI_Allreduce(MPI_IN_PLACE, &all_pairs, 1, MPI_INT, MPI_LAND, problem.comm);
-    if (all_pairs)
-      ISSetBlockSize(is, 2);
+    // u comes in blocks of d components per node: say so, for nodal AMG on
+    // that block
+    const std::size_t d = problem.dim();
+    bool blocks = std::string(name) == "u" and global.size() % d == 0;
+    for (std::size_t i = 0; blocks and i < global.size(); i += d)
+      for (std::size_t c = 1; c < d; ++c)
+        blocks = blocks and global[i + c] == global[i] + PetscInt(c);
+    int all_blocks = blocks;
+    MPI_Allreduce(MPI_IN_PLACE, &all_blocks, 1, MPI_INT, MPI_LAND, problem.comm);
+    if (all_blocks)
+      ISSetBlockSize(is, d);
     PCFieldSplitSetIS(pc, name, is);
     ISDestroy(&is);
   }

@@ -14,7 +14,7 @@ import ufl  # noqa: E402
 from dolfinx import fem  # noqa: E402
 from matplotlib.tri import Triangulation  # noqa: E402
 
-from piezocontact.model import constants, pf  # noqa: E402
+from piezocontact.model import model_constants, pf, set_constants  # noqa: E402
 
 from . import compare  # noqa: E402
 
@@ -36,7 +36,9 @@ class RunState:
         # stress shown is the elastic + piezoelectric part only
         self.viscous = previous.exists() or n == 1
         u_prev = fields.function(previous, "u") if previous.exists() else u
-        data = constants(msh, cfg, fields.tag_of)
+        data, materials, loads = model_constants(msh, fields.named)
+        set_constants(cfg, data, materials, loads)
+        (mat,) = materials.values()  # the contactor: one material
 
         V, Vu = fields.V["phi"], fields.V["u"]
         cells = V.dofmap.list.array.reshape(-1, 3)
@@ -50,10 +52,10 @@ class RunState:
         midpoint = np.array([[1.0 / 3.0, 1.0 / 3.0]])
         dg0 = fem.VectorFunctionSpace(msh, ("DG", 0))
         D = fem.Function(dg0)
-        D.interpolate(fem.Expression(pf.electric_displacement(u, phi, data), midpoint))
+        D.interpolate(fem.Expression(pf.electric_displacement(u, phi, mat), midpoint))
         self.D = D.x.array.reshape(-1, 2).copy()
         stress = fem.Function(fem.VectorFunctionSpace(msh, ("DG", 0), dim=3))
-        sigma = pf.stress_voigt(u, pf.velocity(u, u_prev, data), phi, data)
+        sigma = pf.stress_voigt(u, pf.velocity(u, u_prev, data), phi, mat)
         stress.interpolate(fem.Expression(sigma, midpoint))
         s = stress.x.array.reshape(-1, 3)
         # von Mises of the in-plane total stress (the plane model carries no s_zz)
@@ -61,14 +63,14 @@ class RunState:
                                  + 3 * s[:, 2] ** 2)
 
         ds = ufl.Measure("ds", domain=msh, subdomain_data=fields.facet_tags)
-        contact = pf.contact_term(u, ufl.TestFunction(Vu), ufl.FacetNormal(msh), ds, data)
+        gamma_c = tuple(fields.tag_of[b] for b, bc in cfg["boundaries"].items() if bc.get("contact"))
+        contact = pf.contact_term(u, ufl.TestFunction(Vu), ufl.FacetNormal(msh), ds(gamma_c), data)
         self.contact_force = -fem.petsc.assemble_vector(fem.form(contact)).array.reshape(-1, 2)
         # length of Gamma_C where u.nu > g (fine quadrature: the indicator is discontinuous)
         n = ufl.FacetNormal(msh)
         fine = ds(metadata={"quadrature_degree": 10})
-        self.contact_length = fem.assemble_scalar(fem.form(sum(
-            data["chi"][s] * ufl.conditional(ufl.gt(pf.gap_function(u, n, data), 0), 1.0, 0.0)
-            * fine(s + 1) for s in range(pf.MAX_BOUNDARIES))))
+        self.contact_length = fem.assemble_scalar(fem.form(
+            ufl.conditional(ufl.gt(pf.gap_function(u, n, data), 0), 1.0, 0.0) * fine(gamma_c)))
 
     def deformed(self, scale):
         return self.x + scale * self.u

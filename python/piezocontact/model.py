@@ -32,6 +32,7 @@ def _forms_dir():
 sys.path.insert(0, str(_forms_dir()))
 import manufactured as mms  # noqa: E402
 import piezo_forms as pf  # noqa: E402
+from entry_points import MIDPOINT, VERTICES  # noqa: E402  (the reference points, by dimension)
 
 
 def python_mesh(named):
@@ -41,21 +42,34 @@ def python_mesh(named):
     return dmesh.Mesh(cpp_mesh, ufl.Mesh(ufl.VectorElement("Lagrange", cell, 1)))
 
 
-def zero_constants(msh, manufactured=False):
-    """The Constants of the forms (and of a manufactured solution), zero."""
-    shapes = dict(pf.constant_shapes())
+def _constant(msh, shape):
+    return fem.Constant(msh, np.zeros(shape))
+
+
+def model_constants(msh, named, manufactured=False):
+    """The Constants of the forms, zero: those shared by every term, each
+    region's material and each named boundary's loads."""
+    d = msh.geometry.dim
+    shapes = dict(pf.constant_shapes(d))
     if manufactured:
         shapes.update(mms.constant_shapes())
-    return {name: fem.Constant(msh, np.zeros(shape)) for name, shape in shapes.items()}
+    shared = {name: _constant(msh, shape) for name, shape in shapes.items()}
+    materials = {region: {name: _constant(msh, shape)
+                          for name, shape in pf.material_shapes(d).items()}
+                 for region in named.region_of}
+    loads = {boundary: {name: _constant(msh, shape) for name, shape in pf.load_shapes(d).items()}
+             for boundary in named.tag_of}
+    return shared, materials, loads
 
 
-def constants(msh, cfg, tag_of, source="config"):
-    """The Constants of the forms on `msh`, filled from a validated config by
-    the C++ core (as for a run)."""
-    data = zero_constants(msh, "manufactured" in cfg)
-    cpp.set_constants(json.dumps(cfg), tag_of, {n: c._cpp_object for n, c in data.items()},
-                      source)
-    return data
+def set_constants(cfg, shared, materials, loads, source="config"):
+    """Fill the Constants from a validated config, by the C++ core (as for a
+    run)."""
+    def cpp_map(constants):
+        return {n: c._cpp_object for n, c in constants.items()}
+    cpp.set_constants(json.dumps(cfg), cpp_map(shared),
+                      {r: cpp_map(m) for r, m in materials.items()},
+                      {b: cpp_map(m) for b, m in loads.items()}, source)
 
 
 def _depends_on_state(form, x, x_prev, data):
@@ -67,66 +81,139 @@ def _depends_on_state(form, x, x_prev, data):
         "t" in data and data["t"] in form.constants())
 
 
+def _mark(msh, dim, entities):
+    """Tags marking `entities` with 1: the piece a term is integrated over."""
+    entities = np.unique(np.asarray(entities, dtype=np.int32))
+    return dmesh.meshtags(msh, dim, entities, np.ones_like(entities))
+
+
 class JitModel:
     """The forms of a run and the objects they hold; `cpp_model()` hands
-    them to the C++ core. The hooks:
+    them to the C++ core as lists of terms, one per region, named boundary
+    and the contact facets (as the executable's compiled_model.cpp does);
+    `F_whole`, `J_whole` are the same residual as one form on the mesh's own
+    tags, for the reference engine. The hooks:
       extra_residual(u, phi, w, psi, data) -> UFL form added to F (J follows
-        by differentiation);
+        by differentiation); data: the shared Constants and, with one
+        material, the material's (Bv, Av, e, beta);
       contact_law(r, c_p) -> UFL expression replacing the law p."""
 
     def __init__(self, named, cfg, extra_residual=None, contact_law=None):
         self.named = named
         self.mesh = python_mesh(named)
         msh = self.mesh
+        d, tdim = msh.geometry.dim, msh.topology.dim
         cell = msh.ufl_cell()
         element = ufl.MixedElement([ufl.VectorElement("Lagrange", cell, 1),
                                     ufl.FiniteElement("Lagrange", cell, 1)])
         self.W = fem.FunctionSpace(msh, element)
         self.x = fem.Function(self.W, name="x")
         self.x_prev = fem.Function(self.W, name="x_prev")
+        x, x_prev = self.x, self.x_prev
         manufactured = "manufactured" in cfg
-        self.data = zero_constants(msh, manufactured)
+        self.data, self.materials, self.loads = model_constants(msh, named, manufactured)
+        data = self.data
         law = contact_law or pf.p
-
-        ds = ufl.Measure("ds", domain=msh, subdomain_data=named.facet_tags)
         y, dx_trial = ufl.TestFunction(self.W), ufl.TrialFunction(self.W)
-        residual = mms.residual if manufactured else pf.residual
-        F = residual(self.x, self.x_prev, y, ds, self.data, law)
-        J_state = pf.contact_jacobian(self.x, y, dx_trial, ds, self.data, law)
+        contact_names = [b for b, bc in cfg["boundaries"].items()
+                         if bc.get("contact") and b in named.tag_of]
+        self.contact_facets = np.unique(np.concatenate(
+            [named.boundary_facets(b) for b in contact_names] + [np.zeros(0, np.int32)]))
+
+        # The terms, each on its piece (dx(1), ds(1) of tags marking it)
+        def dx_on(cells):
+            return ufl.Measure("dx", domain=msh, subdomain_data=_mark(msh, tdim, cells))(1)
+
+        def ds_on(facets):
+            return ufl.Measure("ds", domain=msh, subdomain_data=_mark(msh, tdim - 1, facets))(1)
+
+        F, J, L, J_state = [], [], [], []
+        self.fields = []
+        midpoint = np.array(MIDPOINT[cell.cellname()])
+        u, phi = ufl.split(x)
+        u_prev, _ = ufl.split(x_prev)
+        for region, mat in self.materials.items():
+            cells = named.region_cells(region)
+            dx_r = dx_on(cells)
+            scope = {**data, **mat}
+            region_residual = mms.region_residual if manufactured else pf.region_residual
+            F_r = region_residual(x, x_prev, y, dx_r, mat, scope)
+            F.append(F_r)
+            J.append(pf.jacobian(pf.region_residual(x, x_prev, y, dx_r, mat, scope), x, dx_trial))
+            L.append(pf.body_loads(y, dx_r, data)
+                     + (mms.body_loads(y, dx_r, mat, data) if manufactured else 0))
+            if manufactured:  # one region (checked): the exact solution's surface loads
+                ds_all = ufl.Measure("ds", domain=msh)
+                F.append(-mms.exterior_loads(y, ds_all, mat, data))
+                L.append(mms.exterior_loads(y, ds_all, mat, data))
+            self.fields.append((cells, fem.Expression(pf.electric_displacement(u, phi, mat), midpoint),
+                                fem.Expression(pf.stress_voigt(u, pf.velocity(u, u_prev, data),
+                                                               phi, mat), midpoint)))
+        self.boundary_measures = {}
+        for boundary, load in self.loads.items():
+            ds_b = ds_on(named.boundary_facets(boundary))
+            F.append(-pf.boundary_loads(y, ds_b, load))
+            L.append(pf.boundary_loads(y, ds_b, load))
+            self.boundary_measures[boundary] = fem.form(1.0 * ds_b)
+        ds_c = ds_on(self.contact_facets)
+        contact_residual = mms.contact_residual if manufactured else pf.contact_residual
+        F.append(contact_residual(x, y, ds_c, data, law))
+        J_contact = pf.jacobian(pf.contact_residual(x, y, ds_c, data, law), x, dx_trial)
+        J.append(J_contact)
+        J_state.append(J_contact)
+        if manufactured:
+            L.append(mms.contact_loads(y, ds_c, data, law))
         if extra_residual is not None:
-            u, phi = ufl.split(self.x)
+            hook_data = {**data, **(next(iter(self.materials.values()))
+                                    if len(self.materials) == 1 else {})}
             w, psi = ufl.split(y)
-            extra = extra_residual(u, phi, w, psi, self.data)
-            F = F + extra
+            extra = extra_residual(u, phi, w, psi, hook_data)
+            F.append(extra)
+            J_extra = pf.jacobian(extra, x, dx_trial)
+            J.append(J_extra)
             # LU reuse compares the state-dependent part of J: the extra
             # term's derivative joins it unless it is constant in the run
-            J_extra = ufl.algorithms.expand_derivatives(pf.jacobian(extra, self.x, dx_trial))
-            if _depends_on_state(J_extra, self.x, self.x_prev, self.data):
-                J_state = J_state + pf.jacobian(extra, self.x, dx_trial)
-        self.F_ufl = F
-        self.J_ufl = pf.jacobian(F, self.x, dx_trial)
-        self.F, self.J, self.J_contact = fem.form([F, self.J_ufl, J_state])
-        self.L = fem.form(mms.applied_loads(y, ds, self.data, law) if manufactured
-                          else pf.applied_loads(y, ds, self.data))
-        self.contact_force = [fem.form(pf.contact_force(self.x, ds, self.data, i, law))
-                              for i in range(msh.geometry.dim)]
-        self.boundary_measures = {name: fem.form(1.0 * ds(tag))
-                                  for name, tag in named.tag_of.items()}
+            if _depends_on_state(ufl.algorithms.expand_derivatives(J_extra), x, x_prev, data):
+                J_state.append(J_extra)
+        self.F_terms, self.J_terms, self.J_state, self.L_terms = (
+            [fem.form(f) for f in forms] for forms in (F, J, J_state, L))
+        self.contact_force = [fem.form(pf.contact_force(x, ds_c, data, i, law)) for i in range(d)]
+        self._whole(cfg, manufactured, law, extra_residual)
 
-        u, phi = ufl.split(self.x)
-        u_prev, _ = ufl.split(self.x_prev)
-        midpoint = np.array([[1.0 / 3.0, 1.0 / 3.0]])
-        self.electric_displacement = fem.Expression(
-            pf.electric_displacement(u, phi, self.data), midpoint)
-        self.stress = fem.Expression(
-            pf.stress_voigt(u, pf.velocity(u, u_prev, self.data), phi, self.data), midpoint)
         self.exact, self.squared_errors = None, {}
         if manufactured:
-            u_ex, phi_ex, _ = mms.exact_solution(msh.ufl_domain(), self.data)
-            vertices = np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]])
+            u_ex, phi_ex, _ = mms.exact_solution(msh.ufl_domain(), data)
+            vertices = np.array(VERTICES[msh.ufl_cell().cellname()])
             self.exact = (fem.Expression(u_ex, vertices), fem.Expression(phi_ex, vertices))
             self.squared_errors = {name: fem.form(f)
-                                   for name, f in mms.squared_errors(self.x, self.data).items()}
+                                   for name, f in mms.squared_errors(x, data).items()}
+
+    def _whole(self, cfg, manufactured, law, extra_residual):
+        """The residual and its Jacobian as one form each, on the mesh's own
+        cell and facet tags: the reference engine's view of the model."""
+        named, msh, x, x_prev = self.named, self.mesh, self.x, self.x_prev
+        y, dx_trial = ufl.TestFunction(self.W), ufl.TrialFunction(self.W)
+        dx = ufl.Measure("dx", domain=msh, subdomain_data=named.cell_tags)
+        ds = ufl.Measure("ds", domain=msh, subdomain_data=named.facet_tags)
+        contact = [named.tag_of[b] for b, bc in cfg["boundaries"].items()
+                   if bc.get("contact") and b in named.tag_of]
+        if manufactured:
+            (region, mat), = self.materials.items()
+            F = mms.residual(x, x_prev, y, dx(named.region_of[region]), ds, mat, contact,
+                             self.data, law)
+        else:
+            F = pf.residual(x, x_prev, y, dx, ds,
+                            {named.region_of[r]: m for r, m in self.materials.items()},
+                            {named.tag_of[b]: load for b, load in self.loads.items()},
+                            contact, self.data, law)
+        if extra_residual is not None:
+            u, phi = ufl.split(x)
+            w, psi = ufl.split(y)
+            hook_data = {**self.data, **(next(iter(self.materials.values()))
+                                         if len(self.materials) == 1 else {})}
+            F = F + extra_residual(u, phi, w, psi, hook_data)
+        self.F_whole = fem.form(F)
+        self.J_whole = fem.form(pf.jacobian(F, x, dx_trial))
 
     def cpp_model(self):
         m = cpp.Model()
@@ -135,10 +222,19 @@ class JitModel:
         m.x = self.x._cpp_object
         m.x_prev = self.x_prev._cpp_object
         m.constants = {name: c._cpp_object for name, c in self.data.items()}
-        m.F, m.J, m.J_contact, m.L = self.F, self.J, self.J_contact, self.L
+        m.materials = {r: {n: c._cpp_object for n, c in mat.items()}
+                       for r, mat in self.materials.items()}
+        m.loads = {b: {n: c._cpp_object for n, c in load.items()}
+                   for b, load in self.loads.items()}
+        m.contact_facets = self.contact_facets
+        m.F, m.J, m.J_contact, m.L = self.F_terms, self.J_terms, self.J_state, self.L_terms
         m.contact_force = self.contact_force
-        m.electric_displacement = self.electric_displacement._cpp_object
-        m.stress = self.stress._cpp_object
+        fields = []
+        for cells, D, stress in self.fields:
+            f = cpp.RegionFields()
+            f.cells, f.electric_displacement, f.stress = cells, D._cpp_object, stress._cpp_object
+            fields.append(f)
+        m.fields = fields
         if self.exact:
             m.u_exact, m.phi_exact = (e._cpp_object for e in self.exact)
         m.squared_errors = self.squared_errors

@@ -28,7 +28,7 @@ class _Newton:
 
     def __init__(self, model, problem, settings, comm):
         self.x, self.bcs, self.problem = model.x, problem.bcs, problem
-        self.F_form, self.J_form = model.F, model.J
+        self.F_form, self.J_form = model.F_whole, model.J_whole
         self.fields = {"u": np.asarray(problem.u_dofs), "phi": np.asarray(problem.phi_dofs)}
         self.b = fem.petsc.create_vector(self.F_form)
         self.A = fem.petsc.create_matrix(self.J_form)

@@ -1,0 +1,43 @@
+#include "model.h"
+
+#include <algorithm>
+
+namespace piezocontact
+{
+using namespace dolfinx;
+namespace
+{
+std::vector<std::int32_t> tagged(const mesh::MeshTags<std::int32_t>* tags, int tag)
+{
+  std::vector<std::int32_t> out;
+  if (!tags)
+    return out;
+  const auto& idx = tags->indices();
+  const auto& val = tags->values();
+  for (std::size_t i = 0; i < idx.size(); ++i)
+    if (val[i] == tag)
+      out.push_back(idx[i]);
+  return out;
+}
+} // namespace
+
+std::vector<std::int32_t> NamedMesh::boundary_facets(const std::string& name) const
+{
+  return tagged(facet_tags.get(), tag_of.at(name));
+}
+
+std::vector<std::int32_t> NamedMesh::region_cells(const std::string& name) const
+{
+  return tagged(cell_tags.get(), region_of.at(name));
+}
+
+std::shared_ptr<mesh::MeshTags<std::int32_t>>
+mark(std::shared_ptr<const mesh::Mesh> mesh, int dim, std::vector<std::int32_t> entities)
+{
+  std::sort(entities.begin(), entities.end()); // MeshTags needs sorted, unique indices
+  entities.erase(std::unique(entities.begin(), entities.end()), entities.end());
+  std::vector<std::int32_t> ones(entities.size(), 1);
+  return std::make_shared<mesh::MeshTags<std::int32_t>>(mesh, dim, std::move(entities),
+                                                        std::move(ones));
+}
+} // namespace piezocontact
