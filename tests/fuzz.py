@@ -206,9 +206,11 @@ def materialise(case, directory, index):
 
 
 def run_executable(argv):
+    """(exit code, stderr, whether the loop cut a step)"""
     proc = subprocess.run([str(BUILD / "piezo-contact")] + argv, capture_output=True,
                           env=ENV, timeout=CASE_TIMEOUT)
-    return proc.returncode, proc.stderr.decode(errors="replace")
+    return (proc.returncode, proc.stderr.decode(errors="replace"),
+            STEP_CUT in proc.stdout.decode(errors="replace"))
 
 
 def run_worker(engine, argvs):
@@ -224,6 +226,10 @@ def run_worker(engine, argvs):
                              f"{len(results)}: {argvs[len(results)] if len(results) < len(argvs) else ''}"
                              f"\n{proc.stderr[-3000:]}")
     return [(r["code"], r["stderr"]) for r in results]
+
+
+# What the C++ loop prints when it halves a step (even with --quiet)
+STEP_CUT = "retrying with k ="
 
 
 def problems(code, stderr):
@@ -247,10 +253,12 @@ def run_cases(n, seed, directory):
     for i, case in enumerate(cases):
         config, out = materialise(case, directory, i)
         argvs.append(["--config", config, "--output", out, "--quiet"] + case["args"])
-    answers = {"cpp": [run_executable(a) for a in argvs],
+    executable = [run_executable(a) for a in argvs]
+    step_cut = [cut for _, _, cut in executable]
+    answers = {"cpp": [(code, err) for code, err, _ in executable],
                "cpp-jit": run_worker("cpp", argvs),
                "reference": run_worker("reference", argvs)}
-    findings, codes, newton_only = [], collections.Counter(), 0
+    findings, codes, newton_only, step_cuts = [], collections.Counter(), 0, 0
     for i, case in enumerate(cases):
         got = {e: answers[e][i] for e in answers}
         codes[tuple(got[e][0] for e in answers)] += 1
@@ -272,11 +280,19 @@ def run_cases(n, seed, directory):
             if any(tag in case["mutation"] for tag in ("solver.newton", "(off scale)")) \
                     or any("solver.newton" in a for a in case["args"]):
                 newton_only += 1
+            elif (c, r) == (0, 3) and step_cut[i]:
+                # the reference has no step control, by design: where the C++
+                # loop converged only with a shorter step (e.g. an indefinite
+                # elastic tensor, which the paper allows: A/k + B is coercive
+                # for k small enough), full steps may fail
+                step_cuts += 1
             else:
                 findings.append(f"{label}: cpp exit {c}, reference exit {r}")
     return {"cases": n, "seed": seed, "exit codes (cpp, cpp-jit, reference)": dict(
         (",".join(map(str, k)), v) for k, v in sorted(codes.items())),
-        "reference differs (solver.newton or off-scale data)": newton_only, "findings": findings}
+        "reference differs (solver.newton or off-scale data)": newton_only,
+        "reference fails at full steps where the C++ loop cut its step": step_cuts,
+        "findings": findings}
 
 
 def main():
