@@ -128,9 +128,18 @@ std::string either(const std::vector<std::string>& options)
 
 // Validate `value` against `rule` in d dimensions (0: 2 or 3, not known
 // yet); return it with defaults filled in.
-json check(const json& value, const json& rule, const std::string& path,
+const json& schema()
+{
+  static const json parsed = json::parse(config_schema);
+  return parsed;
+}
+
+json check(const json& value, const json& rule_, const std::string& path,
            const std::string& source, int d)
 {
+  // {"ref": KEY}: the rule of the top-level key KEY
+  const json& rule = rule_.contains("ref") ? schema()["keys"][rule_["ref"].get<std::string>()]
+                                           : rule_;
   const std::string t = rule["type"];
   // a word allowed instead of the value
   const json alternative = rule.value("alternative", json());
@@ -386,6 +395,8 @@ void check_manufactured(const json& cfg, const std::string& source)
   const bool mms = cfg.contains("manufactured");
   const std::string unused
       = "not used with a manufactured solution (its loads come from the exact solution)";
+  if (mms and cfg.contains("regions"))
+    fail(source, "regions: a manufactured solution has one material (give material)");
   if (mms)
   {
     for (const char* key : {"body_force", "charge_density"})
@@ -421,6 +432,60 @@ void check_manufactured(const json& cfg, const std::string& source)
   }
 }
 
+// A material: a preset with one orientation, or explicit tensors with a
+// viscosity or a relaxation time
+void check_material(const json& spec, const std::string& path, const std::string& source)
+{
+  const std::vector<std::string> tensors = {"elastic", "viscosity", "piezoelectric", "permittivity"};
+  if (spec.contains("preset"))
+  {
+    for (const auto& k : tensors)
+      if (spec.contains(k))
+        fail(source, join(path, k) + ": not used with a preset (its tensors come from "
+                                     "config/materials.json; the viscosity from relaxation_time)");
+    if (spec.contains("poling") == spec.contains("euler"))
+      fail(source, path + ".preset = " + fmt(spec["preset"]) + ": give its orientation, "
+                   + "either poling (the direction of its axis 3) or euler (angles), not both");
+    if (spec.contains("poling"))
+    {
+      const auto p = spec["poling"].get<std::vector<double>>();
+      double n2 = 0.0, largest = 0.0;
+      for (double x : p)
+        largest = std::max(largest, std::abs(x));
+      for (double x : p)
+        n2 += (x / largest) * (x / largest);
+      if (largest == 0.0 or !std::isfinite(n2))
+        fail(source, path + ".poling = " + fmt(spec["poling"]) + ": must be a nonzero direction");
+    }
+    return;
+  }
+  for (const char* k : {"poling", "euler"})
+    if (spec.contains(k))
+      fail(source, join(path, k) + ": only with a preset (explicit tensors are in the mesh frame)");
+  for (const char* k : {"elastic", "piezoelectric", "permittivity"})
+    if (!spec.contains(k))
+      fail(source, join(path, k) + ": missing required key (or give a preset)");
+  if (spec.contains("viscosity") == spec.contains("relaxation_time"))
+    fail(source, join(path, "viscosity") + (spec.contains("viscosity")
+                                               ? ": give viscosity or relaxation_time, not both"
+                                               : ": missing required key (or relaxation_time)"));
+  check_spd(spec["permittivity"].get<Matrix>(), join(path, "permittivity"), source,
+            "permittivity must be positive definite (2.14c); the paper's Table "
+            "2 prints -beta, use +8.3 eps0 and +8.8 eps0");
+  if (spec.contains("viscosity"))
+    check_spd(spec["viscosity"].get<Matrix>(), join(path, "viscosity"), source,
+              "viscosity must be positive definite (2.11c)");
+  check_symmetric(spec["elastic"].get<Matrix>(), join(path, "elastic"), source);
+  // one dimension for all of a material's tensors (while d is not known)
+  const std::size_t d = spec["permittivity"].size(), m = d == 2 ? 3 : 6;
+  if (spec["elastic"].size() != m or spec["piezoelectric"].size() != d
+      or (spec.contains("viscosity") and spec["viscosity"].size() != m))
+    fail(source, path + ": permittivity is " + std::to_string(d) + "x" + std::to_string(d)
+                     + ": give every tensor in " + std::to_string(d) + "D (elastic "
+                     + std::to_string(m) + "x" + std::to_string(m) + ", piezoelectric "
+                     + std::to_string(d) + "x" + std::to_string(m) + ")");
+}
+
 // Rules that span keys (the same list as config.py's _check_semantics).
 void check_semantics(const json& cfg, const std::string& source)
 {
@@ -439,13 +504,15 @@ void check_semantics(const json& cfg, const std::string& source)
         and std::find(needed.begin(), needed.end(), k) == needed.end())
       fail(source, "mesh." + k + ": not used with mesh.type \"" + type + "\"");
 
-  const json& mat = cfg["material"];
-  check_spd(mat["permittivity"].get<Matrix>(), "material.permittivity", source,
-            "permittivity must be positive definite (2.14c); the paper's Table "
-            "2 prints -beta, use +8.3 eps0 and +8.8 eps0");
-  check_spd(mat["viscosity"].get<Matrix>(), "material.viscosity", source,
-            "viscosity must be positive definite (2.11c)");
-  check_symmetric(mat["elastic"].get<Matrix>(), "material.elastic", source);
+  if (cfg.contains("material") == cfg.contains("regions"))
+    fail(source, cfg.contains("material")
+                     ? "regions: give either material (one for the whole body) or regions, not both"
+                     : "material: missing (or regions: one material per named cell group)");
+  if (cfg.contains("material"))
+    check_material(cfg["material"], "material", source);
+  else
+    for (const auto& [name, spec] : cfg["regions"].items())
+      check_material(spec, join("regions", name), source);
 
   bool held = false;
   for (const auto& [name, bc] : cfg["boundaries"].items())
@@ -563,7 +630,7 @@ json configure(json cfg, const std::vector<std::string>& overrides,
     apply_override(cfg, o, source);
   const json& mesh = cfg.is_object() ? cfg.value("mesh", json()) : json();
   const json type = mesh.is_object() ? mesh.value("type", json()) : json();
-  cfg = check(cfg, json::parse(config_schema), "", source,
+  cfg = check(cfg, schema(), "", source,
               type == "unit_square" ? 2 : type == "box" ? 3 : 0);
   check_semantics(cfg, source);
   return cfg;
@@ -571,7 +638,7 @@ json configure(json cfg, const std::vector<std::string>& overrides,
 
 void check_dimension(const json& cfg, int d, const std::string& source)
 {
-  (void)check(cfg, json::parse(config_schema), "", source, d);
+  (void)check(cfg, schema(), "", source, d);
 }
 
 void bcast_error(std::string& error, MPI_Comm comm)
@@ -675,7 +742,9 @@ void set_constants(const json& cfg, const ConstantMap& constants,
   set_value(constants, "q0", cfg["loads"]["charge_density"]);
   for (const auto& [region, material] : materials)
   {
-    const json& mat = cfg["material"];
+    if (cfg.contains("regions") and !cfg["regions"].contains(region))
+      throw std::logic_error("no material for region " + region + " (check_regions)");
+    const json& mat = cfg.contains("regions") ? cfg["regions"][region] : cfg["material"];
     set_value(material, "Bv", mat["elastic"]);
     set_value(material, "Av", mat["viscosity"]);
     set_value(material, "e", mat["piezoelectric"]);

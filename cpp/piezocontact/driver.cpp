@@ -1,6 +1,7 @@
 #include "driver.h"
 #include "diagnostics.h"
 #include "json_input.h"
+#include "materials.h"
 #include "petsc_options.h"
 #include "mesh.h"
 #include "output.h"
@@ -152,20 +153,23 @@ void prepare_output(const std::filesystem::path& dir, const std::string& source,
 json run_config(const RunRequest& request, MPI_Comm comm, const ModelFactory& make_model,
                 const Engine& engine, const StepObserver& observer)
 {
-  const json& cfg = request.cfg;
-  const RunSettings settings = run_settings(cfg);
+  const RunSettings settings = run_settings(request.cfg);
   check_petsc_options(settings.petsc_options, request.source);
   const QuietPetscErrors quiet; // PETSc failures become exceptions, not dumps
   std::optional<std::filesystem::path> mesh_file;
   if (!request.resume)
-    mesh_file = prepare_mesh(cfg, request.source, request.output, comm);
+    mesh_file = prepare_mesh(request.cfg, request.source, request.output, comm);
   else if (!(*request.resume)["mesh_file"].is_null())
     mesh_file = (*request.resume)["mesh_file"].get<std::string>();
   if (mesh_file)
     mesh_file = std::filesystem::absolute(*mesh_file);
-  const NamedMesh mesh = build_mesh(cfg, comm, mesh_file, request.source);
+  const NamedMesh mesh = build_mesh(request.cfg, comm, mesh_file, request.source);
   check_every_rank_has_cells(mesh, comm, request.source);
-  check_dimension(cfg, mesh.mesh->geometry().dim(), request.source);
+  const int d = mesh.mesh->geometry().dim();
+  check_dimension(request.cfg, d, request.source);
+  check_regions(request.cfg, mesh, request.source);
+  // from here on, every material is its tensors in the mesh frame
+  const json cfg = resolve_materials(request.cfg, d);
   Model model = make_model(mesh, cfg);
   set_constants(cfg, model.constants, model.materials, model.loads, request.source);
   Problem problem(std::move(model), settings.dirichlet, request.source);

@@ -256,6 +256,24 @@ prepare_mesh(const json& cfg, const std::string& source,
   return std::filesystem::path(t);
 }
 
+void check_regions(const json& cfg, const NamedMesh& mesh, const std::string& source)
+{
+  if (!cfg.contains("regions"))
+    return;
+  std::string have;
+  for (const auto& [name, _] : mesh.region_of)
+    have += (have.empty() ? "" : ", ") + name;
+  for (const auto& [name, _] : cfg["regions"].items())
+    if (!mesh.region_of.contains(name))
+      throw ConfigError(printable(source, 200) + ": regions." + printable(name, 60)
+                        + ": the mesh has no region '" + printable(name, 60)
+                        + "' (it has: " + printable(have, 200) + ")");
+  for (const auto& [name, _] : mesh.region_of)
+    if (!cfg["regions"].contains(name))
+      throw ConfigError(printable(source, 200) + ": regions: no material for the mesh's region '"
+                        + printable(name, 60) + "'");
+}
+
 NamedMesh build_mesh(const json& cfg, MPI_Comm comm,
                      const std::optional<std::filesystem::path>& mesh_file,
                      const std::string& source)
