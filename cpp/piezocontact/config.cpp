@@ -493,7 +493,7 @@ void check_semantics(const json& cfg, const std::string& source)
   const std::string type = mesh["type"];
   const std::map<std::string, std::vector<std::string>> needed_by_type
       = {{"unit_square", {"n"}}, {"box", {"n", "size"}}, {"gmsh", {"geometry", "size"}},
-         {"xdmf", {"path"}}};
+         {"xdmf", {"path"}}, {"msh", {"path"}}};
   const auto& needed = needed_by_type.at(type);
   for (const auto& k : needed)
     if (!mesh.contains(k))

@@ -26,7 +26,7 @@ constexpr const char* whole_body = "body";
 
 // What a mesh-generator child process inherits: not the MPI job's
 // variables, which would make its mpi4py join (and break) this job
-const char* child_env_keys[] = {"PATH", "HOME", "TMPDIR", "XDG_CACHE_HOME", "LANG"};
+const char* child_env_keys[] = {"PATH", "HOME", "TMPDIR", "XDG_CACHE_HOME", "LANG", "PYTHONPATH"};
 
 std::string quote(const std::string& s)
 {
@@ -142,16 +142,23 @@ NamedMesh read_xdmf(const std::filesystem::path& file, MPI_Comm comm,
 {
   auto sidecar = file;
   sidecar.replace_extension(".boundaries.json");
-  json names;
+  json names, regions;
   try
   {
-    names = read_json_file(sidecar).at("boundaries");
-    if (!names.is_object())
-      throw std::runtime_error("\"boundaries\" is not an object");
-    for (const auto& [name, tag] : names.items())
-      if (!tag.is_number_integer() or tag.get<double>() < 1 or tag.get<double>() > 1e9)
-        throw std::runtime_error("boundaries." + printable(name) + " = " + printable(tag)
-                                 + ": expected a positive integer (a facet tag)");
+    const json names_file = read_json_file(sidecar);
+    names = names_file.at("boundaries");
+    regions = names_file.value("regions", json());
+    for (const auto& [key, group] : {std::pair{"boundaries", &names}, std::pair{"regions", &regions}})
+    {
+      if (group->is_null() and std::string(key) == "regions")
+        continue;
+      if (!group->is_object())
+        throw std::runtime_error(std::string("\"") + key + "\" is not an object");
+      for (const auto& [name, tag] : group->items())
+        if (!tag.is_number_integer() or tag.get<double>() < 1 or tag.get<double>() > 1e9)
+          throw std::runtime_error(std::string(key) + "." + printable(name) + " = "
+                                   + printable(tag) + ": expected a positive integer (a tag)");
+    }
   }
   catch (const std::exception& e)
   {
@@ -159,7 +166,7 @@ NamedMesh read_xdmf(const std::filesystem::path& file, MPI_Comm comm,
                       + file.string() + " from " + sidecar.string() + ": " + printable(e.what(), 300));
   }
   NamedMesh out;
-  std::vector<std::int32_t> tag_indices, tag_values;
+  std::vector<std::int32_t> tag_indices, tag_values, cell_indices, cell_values;
   try
   {
     io::XDMFFile f(comm, file, "r");
@@ -176,6 +183,12 @@ NamedMesh read_xdmf(const std::filesystem::path& file, MPI_Comm comm,
     const auto file_tags = f.read_meshtags(out.mesh, "facets");
     tag_indices = file_tags.indices();
     tag_values = file_tags.values();
+    if (!regions.is_null())
+    {
+      const auto cell_tags = f.read_meshtags(out.mesh, "cells");
+      cell_indices = cell_tags.indices();
+      cell_values = cell_tags.values();
+    }
   }
   catch (const std::exception& e) // every rank reads the same file
   {
@@ -197,7 +210,27 @@ NamedMesh read_xdmf(const std::filesystem::path& file, MPI_Comm comm,
     if (auto it = slot_of_file_tag.find(tag_values[i]); it != slot_of_file_tag.end())
       tagged.emplace_back(tag_indices[i], it->second);
   out.facet_tags = make_tags(out.mesh, out.mesh->topology().dim() - 1, std::move(tagged));
-  one_region(out);
+  if (regions.is_null())
+  {
+    one_region(out);
+    return out;
+  }
+  // regions: cell tags renumbered 1, 2, ... in sorted name order
+  std::map<std::string, int> sorted_regions;
+  for (const auto& [name, tag] : regions.items())
+    sorted_regions[name] = tag.get<int>();
+  std::map<int, int> slot_of_cell_tag;
+  slot = 0;
+  for (const auto& [name, tag] : sorted_regions)
+  {
+    out.region_of[name] = ++slot;
+    slot_of_cell_tag[tag] = slot;
+  }
+  std::vector<std::pair<std::int32_t, std::int32_t>> cells;
+  for (std::size_t i = 0; i < cell_indices.size(); ++i)
+    if (auto it = slot_of_cell_tag.find(cell_values[i]); it != slot_of_cell_tag.end())
+      cells.emplace_back(cell_indices[i], it->second);
+  out.cell_tags = make_tags(out.mesh, out.mesh->topology().dim(), std::move(cells));
   return out;
 }
 } // namespace
@@ -221,8 +254,10 @@ prepare_mesh(const json& cfg, const std::string& source,
     if (!std::filesystem::is_regular_file(path))
       error = printable(source, 200) + ": mesh." + key + " = " + printable(m[key])
               + ": no such file (" + printable(path.string(), 200) + ")";
-    else if (type == "gmsh")
+    else if (type == "gmsh" or type == "msh")
     {
+      // a script of meshes/ at mesh.size, or the .msh converter, writes
+      // NAME.xdmf and its sidecar into the output folder
       target = std::filesystem::absolute(out_dir) / "mesh" / (path.stem().string() + ".xdmf");
       const auto log = std::filesystem::absolute(out_dir) / "mesh" / "generate.log";
       std::filesystem::create_directories(log.parent_path());
@@ -230,9 +265,12 @@ prepare_mesh(const json& cfg, const std::string& source,
       for (const char* k : child_env_keys)
         if (const char* v = std::getenv(k))
           cmd += std::string(" ") + k + "=" + quote(v);
-      cmd += " /usr/bin/python3 " + quote(path.string()) + " --size "
-             + json(m["size"].get<double>()).dump() + " --output " + quote(target.string())
-             + " > " + quote(log.string()) + " 2>&1";
+      if (type == "gmsh")
+        cmd += " /usr/bin/python3 " + quote(path.string()) + " --size "
+               + json(m["size"].get<double>()).dump();
+      else
+        cmd += " /usr/bin/python3 -m piezocontact.msh " + quote(path.string());
+      cmd += " --output " + quote(target.string()) + " > " + quote(log.string()) + " 2>&1";
       const int status = std::system(cmd.c_str());
       if (status != 0)
       {
@@ -241,9 +279,9 @@ prepare_mesh(const json& cfg, const std::string& source,
         while (std::getline(in, line))
           if (!line.empty())
             last = line;
-        error = printable(source, 200) + ": mesh.geometry = " + printable(m["geometry"])
-                + ": mesh generation failed (exit " + std::to_string(WEXITSTATUS(status))
-                + "): " + printable(last, 200);
+        error = printable(source, 200) + ": mesh." + key + " = " + printable(m[key])
+                + (type == "gmsh" ? ": mesh generation failed (exit " : ": cannot read it (exit ")
+                + std::to_string(WEXITSTATUS(status)) + "): " + printable(last, 200);
       }
     }
   }
