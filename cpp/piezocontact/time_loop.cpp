@@ -1,4 +1,6 @@
 #include "time_loop.h"
+
+#include <limits>
 #include "diagnostics.h"
 #include "fieldwise.h"
 #include "json_input.h"
@@ -13,6 +15,7 @@
 #include <dolfinx/la/petsc.h>
 #include <dolfinx/nls/NewtonSolver.h>
 #include <iostream>
+#include <limits>
 #include <petscksp.h>
 
 namespace piezocontact
@@ -67,6 +70,31 @@ void set_field_splits(KSP ksp, const Problem& problem)
     PCFieldSplitSetIS(pc, name, is);
     ISDestroy(&is);
   }
+}
+
+/// The fields that did not converge and made no progress in the last
+/// iterations: what round-off of terms far larger than the residual does
+/// (data spanning more orders of magnitude than double precision resolves)
+std::string stalled(const std::vector<std::map<std::string, FieldNorms>>& history, double rtol)
+{
+  constexpr std::size_t window = 5;
+  if (history.size() < window)
+    return "";
+  std::string out;
+  for (const auto& [name, last] : history.back())
+  {
+    double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
+    for (std::size_t i = history.size() - window; i < history.size(); ++i)
+    {
+      lo = std::min(lo, history[i].at(name).relative);
+      hi = std::max(hi, history[i].at(name).relative);
+    }
+    if (last.relative > rtol and hi <= 10 * lo)
+      out += (out.empty() ? "" : ", ") + name;
+  }
+  return out.empty() ? ""
+                     : " (" + out + " stalled at round-off for " + std::to_string(window)
+                           + " iterations: data off scale by many orders of magnitude?)";
 }
 
 double callback_seconds(const NonlinearSystem& sys)
@@ -252,8 +280,8 @@ json run(Problem& problem, const RunSettings& settings, const std::filesystem::p
       const std::string action = steps.reject();
       record.reject(report, action);
       if (action == "stop")
-        record.fail(std::string(what) + "; gave up after " + std::to_string(steps.max_halvings)
-                    + " halvings of the time step");
+        record.fail(std::string(what) + stalled(monitor.history, settings.newton.rtol) + "; gave up after "
+                    + std::to_string(steps.max_halvings) + " halvings of the time step");
       int rank;
       MPI_Comm_rank(comm, &rank);
       if (rank == 0)

@@ -117,6 +117,18 @@ from mpi4py import MPI  # noqa: E402
 _MAX = MPI.MAX
 
 
+def _stalled(history, window=5):
+    """The fields whose increments did not get small and made no progress in
+    the last iterations: round-off of an ill-conditioned solve."""
+    if len(history) < window + 1:
+        return ""
+    last = history[-window:]
+    stalled = [f for f in last[-1] if last[-1][f][1] > INCREMENT_RTOL
+               and max(h[f][1] for h in last) <= 10 * min(h[f][1] for h in last)]
+    return (f" ({', '.join(stalled)} stalled at round-off for {window} iterations: data off "
+            "scale by many orders of magnitude?)") if stalled else ""
+
+
 def _report(t, k, its, history):
     report = cpp.SolveReport()
     report.t, report.k = t, k
@@ -175,7 +187,7 @@ def run(model, problem, settings, output, summary, progress, observer=None):
                 "forces (too ill-conditioned for double precision? contact.c_p = "
                 f"{float(model.data['c_p'].value):.3e})")
             record.fail(f"Newton did not converge at t = {t:g} (k = {k:g}) in {its} "
-                        f"iterations (reference engine){unbalanced}")
+                        f"iterations (reference engine){unbalanced}{_stalled(newton.history)}")
         # recorded while x_prev is u_{n-1}: the stress holds the velocity
         record.accept(cpp.StepState(n, n, t, k, k, k), report, x, x_prev, x,
                       n == settings.steps, timing())
