@@ -7,6 +7,7 @@ the table of messages in docs/errors.md from real runs of the executable:
 """
 
 import json
+import os
 import subprocess
 import sys
 import tempfile
@@ -16,6 +17,8 @@ ROOT = Path(__file__).resolve().parents[1]
 SQUARE = ROOT / "demos" / "square.json"
 CONTACTOR = ROOT / "demos" / "contactor.json"
 MMS = ROOT / "demos" / "manufactured.json"
+SLAB = ROOT / "demos" / "slab.json"
+BILAYER = ROOT / "demos" / "bilayer.json"
 UNUSED = "not used with a manufactured solution (its loads come from the exact solution)"
 
 # name: (config, --set overrides, expected part of the message)
@@ -106,6 +109,27 @@ CASES = {
                                             f"loads.body_force = [1.0,0.0]: {UNUSED}"),
     "a traction with a manufactured solution": (MMS, ["boundaries.top.traction=[0,-10]"],
                                                 f"boundaries.top.traction: {UNUSED}"),
+    "a preset with tensors of its own": (
+        SQUARE, ['material={"preset":"PZT-4","poling":[0,1],"elastic":[[1,0,0],[0,1,0],[0,0,1]]}'],
+        "material.elastic: not used with a preset"),
+    "a preset without orientation": (
+        SQUARE, ['material={"preset":"PZT-4"}'],
+        "material.preset = \"PZT-4\": give its orientation, either poling"),
+    "an unknown preset": (
+        SQUARE, ['material={"preset":"PZT-8","poling":[0,1]}'],
+        "material.preset = \"PZT-8\": expected one of ZnO-paper, PZT-4, PZT-5H"),
+    "a zero poling direction": (
+        SQUARE, ['material={"preset":"PZT-4","poling":[0,0]}'],
+        "material.poling = [0.0,0.0]: must be a nonzero direction"),
+    "a 2D vector on a 3D mesh": (
+        SLAB, ["boundaries.top.traction=[0,-10]"],
+        "boundaries.top.traction = [0,-10]: expected a list of 3 numbers (the mesh is 3D)"),
+    "a region the mesh lacks": (
+        BILAYER, ['regions.core={"preset":"PZT-4","poling":[0,1]}'],
+        "regions.core: the mesh has no region 'core' (it has: film, substrate)"),
+    "both material and regions": (
+        BILAYER, ['material={"preset":"PZT-4","poling":[0,1]}'],
+        "regions: give either material (one for the whole body) or regions, not both"),
     "numeric Dirichlet data with a manufactured solution": (
         MMS, ["boundaries.top.potential=3"],
         "boundaries.top.potential = 3.0: with a manufactured solution the Dirichlet data "
@@ -181,7 +205,7 @@ def main():
             "`tests/test_interrupts.py`.\n",
             "| bad input | message (`piezo-contact`, config `demos/...` or a scratch file) |",
             "|---|---|"]
-    exe = ROOT / "build" / "piezo-contact"
+    exe = Path(os.environ.get("PIEZO_BUILD", ROOT / "build")) / "piezo-contact"
     for case in CASES:
         with tempfile.TemporaryDirectory() as tmp:
             config, overrides, out = materialise(case, tmp)

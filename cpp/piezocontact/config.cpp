@@ -199,6 +199,11 @@ json check(const json& value, const json& rule_, const std::string& path,
     {
       if (value.contains(k))
         out[k] = check(value[k], sub, join(path, k), source, d);
+      else if (sub.value("default", json()) == "zeros") // a vector of d zeros, once d is known
+      {
+        if (d)
+          out[k] = std::vector<double>(size_in(sub["length"], d), 0.0);
+      }
       else if (sub.contains("default"))
         out[k] = check(sub["default"], sub, join(path, k), source, d);
       else if (sub.value("required", false))
@@ -636,9 +641,9 @@ json configure(json cfg, const std::vector<std::string>& overrides,
   return cfg;
 }
 
-void check_dimension(const json& cfg, int d, const std::string& source)
+json check_dimension(const json& cfg, int d, const std::string& source)
 {
-  (void)check(cfg, schema(), "", source, d);
+  return check(cfg, schema(), "", source, d);
 }
 
 void bcast_error(std::string& error, MPI_Comm comm)

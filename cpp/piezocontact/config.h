@@ -36,8 +36,9 @@ json configure(json cfg, const std::vector<std::string>& overrides,
                const std::string& source);
 
 /// Check that every vector and matrix of a validated config has the shape
-/// of d dimensions (known once the mesh is read). Throws ConfigError.
-void check_dimension(const json& cfg, int d, const std::string& source);
+/// of d dimensions (known once the mesh is read); return it with the
+/// defaults that depend on d filled in. Throws ConfigError.
+json check_dimension(const json& cfg, int d, const std::string& source);
 
 /// Throw rank 0's error (if not empty) as the same ConfigError on every
 /// rank, so that none waits for the others. Collective.

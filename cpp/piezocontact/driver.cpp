@@ -166,10 +166,10 @@ json run_config(const RunRequest& request, MPI_Comm comm, const ModelFactory& ma
   const NamedMesh mesh = build_mesh(request.cfg, comm, mesh_file, request.source);
   check_every_rank_has_cells(mesh, comm, request.source);
   const int d = mesh.mesh->geometry().dim();
-  check_dimension(request.cfg, d, request.source);
-  check_regions(request.cfg, mesh, request.source);
+  const json checked = check_dimension(request.cfg, d, request.source);
+  check_regions(checked, mesh, request.source);
   // from here on, every material is its tensors in the mesh frame
-  const json cfg = resolve_materials(request.cfg, d);
+  const json cfg = resolve_materials(checked, d);
   Model model = make_model(mesh, cfg);
   set_constants(cfg, model.constants, model.materials, model.loads, request.source);
   Problem problem(std::move(model), settings.dirichlet, request.source);

@@ -186,11 +186,15 @@ json resolve_material(const json& spec, int d)
     json out = spec;
     if (!spec.contains("viscosity"))
     {
+      // the viscosity it means, and where it came from (a resolved
+      // material validates as it is: a resumed run reads it back)
       Matrix A = spec["elastic"].get<Matrix>();
       for (auto& row : A)
         for (double& x : row)
           x = decimal(x * spec["relaxation_time"].get<double>());
       out["viscosity"] = A;
+      out.erase("relaxation_time");
+      out["resolved_from"] = {{"relaxation_time", spec["relaxation_time"]}};
     }
     return out;
   }

@@ -52,25 +52,27 @@ class FieldComparer:
         self.facet_tags, self.tag_of = self.named.facet_tags, self.named.tag_of
         self.V = {"u": fem.VectorFunctionSpace(self.mesh, ("Lagrange", 1)),
                   "phi": fem.FunctionSpace(self.mesh, ("Lagrange", 1))}
-        self._order = {f: self._lexorder(V.tabulate_dof_coordinates()[:, :2])
+        self.dim = self.mesh.geometry.dim
+        self._order = {f: self._lexorder(V.tabulate_dof_coordinates()[:, :self.dim])
                        for f, V in self.V.items()}
 
     @staticmethod
-    def _lexorder(xy):
-        key = np.round(xy, 12)
-        return np.lexsort((key[:, 1], key[:, 0]))
+    def _lexorder(x):
+        key = np.round(x, 12)
+        return np.lexsort(key.T[::-1])
 
     def function(self, nodal_file, field):
         rows = np.load(nodal_file)
         V = self.V[field]
         f = fem.Function(V)
         dofs = self._order[field]
-        src = self._lexorder(rows[:, :2])
+        d = self.dim
+        src = self._lexorder(rows[:, :d])
         if len(src) != len(dofs) or not np.allclose(
-                rows[src, :2], V.tabulate_dof_coordinates()[dofs, :2], atol=1e-12):
+                rows[src, :d], V.tabulate_dof_coordinates()[dofs, :d], atol=1e-12):
             raise ValueError(f"{nodal_file}: nodes do not match the mesh of the config")
         bs = V.dofmap.index_map_bs
-        f.x.array.reshape(-1, bs)[dofs] = rows[src, 2:]
+        f.x.array.reshape(-1, bs)[dofs] = rows[src, d:]
         return f
 
     def relative_l2(self, file_a, file_b, field):
