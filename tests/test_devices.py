@@ -107,19 +107,20 @@ def uniform_block(tmp_path, axis, preset="PZT-5H"):
     return write(tmp_path / f"block_{axis}.json", cfg)
 
 
-def creep_recurrence(material, k, steps, axis):
+def creep_recurrence(material, k, steps, axis, factor=lambda t: 1.0):
     """Backward Euler on the uniform state: strains eps = (e_xx, e_yy, e_zz)
     (no shear: rollers), D = e eps - beta grad(phi) = 0 (charge-free faces),
     so grad(phi) = beta^-1 e eps and the normal stresses
-    (B + e^T beta^-1 e) eps + A (eps - eps_prev)/k = (0, -SIGMA0, 0)."""
+    (B + e^T beta^-1 e) eps + A (eps - eps_prev)/k = (0, -SIGMA0 factor(t), 0)."""
     B, A = np.array(material["elastic"]), np.array(material["viscosity"])
     e, beta = np.array(material["piezoelectric"]), np.array(material["permittivity"])
     normal = [0, 1, 2]
     stiff = (B + e.T @ np.linalg.solve(beta, e))[np.ix_(normal, normal)]
     visc = A[np.ix_(normal, normal)] / k
     eps, out = np.zeros(3), []
-    for _ in range(steps):
-        eps = np.linalg.solve(stiff + visc, np.array([0.0, -SIGMA0, 0.0]) + visc @ eps)
+    for n in range(1, steps + 1):
+        load = np.array([0.0, -SIGMA0 * factor(n * k), 0.0])
+        eps = np.linalg.solve(stiff + visc, load + visc @ eps)
         strain = np.zeros(6)
         strain[:3] = eps
         out.append((eps, np.linalg.solve(beta, e @ strain)))

@@ -135,11 +135,49 @@ const json& schema()
 }
 
 json check(const json& value, const json& rule_, const std::string& path,
+           const std::string& source, int d);
+
+/// A load history: exactly one kind; a table's times increasing
+json check_history(const json& value, const std::string& path, const std::string& source)
+{
+  json h = check(value, schema()["definitions"]["history"], path, source, 0);
+  if (h.size() != 1)
+    fail(source, path + " = " + fmt(value) + ": give exactly one of ramp, sine, table");
+  if (h.contains("table"))
+  {
+    const json& rows = h["table"];
+    if (rows.empty())
+      fail(source, path + ".table: give at least one [t, factor] row");
+    for (std::size_t i = 1; i < rows.size(); ++i)
+      if (!(rows[i][0].get<double>() > rows[i - 1][0].get<double>()))
+        fail(source, path + ".table = " + fmt(rows) + ": times must increase (row "
+                         + std::to_string(i) + ")");
+  }
+  return h;
+}
+
+json check(const json& value, const json& rule_, const std::string& path,
            const std::string& source, int d)
 {
-  // {"ref": KEY}: the rule of the top-level key KEY
-  const json& rule = rule_.contains("ref") ? schema()["keys"][rule_["ref"].get<std::string>()]
-                                           : rule_;
+  // {"ref": KEY}: the rule of definitions.KEY or of the top-level key KEY
+  const json& rule = !rule_.contains("ref") ? rule_
+                     : schema()["definitions"].contains(rule_["ref"].get<std::string>())
+                         ? schema()["definitions"][rule_["ref"].get<std::string>()]
+                         : schema()["keys"][rule_["ref"].get<std::string>()];
+  // a timed datum: the value, or {"value": the value, "history": ...}
+  if (rule.value("timed", false) and value.is_object())
+  {
+    for (const auto& [k, _] : value.items())
+      if (k != "value" and k != "history")
+        fail(source, join(path, k) + ": unknown key (a timed datum has value and history)");
+    for (const char* k : {"value", "history"})
+      if (!value.contains(k))
+        fail(source, join(path, k) + ": missing required key (a timed datum has value and history)");
+    json plain = rule;
+    plain.erase("timed");
+    return {{"value", check(value["value"], plain, join(path, "value"), source, d)},
+            {"history", check_history(value["history"], join(path, "history"), source)}};
+  }
   const std::string t = rule["type"];
   // a word allowed instead of the value
   const json alternative = rule.value("alternative", json());
@@ -319,6 +357,13 @@ json check(const json& value, const json& rule_, const std::string& path,
     }
     wrong("a " + either(options) + " matrix (a list of rows of numbers"
           + (d ? ", the mesh is " + std::to_string(d) + "D)" : ", 2D or 3D)"));
+  }
+  if (t == "pairs")
+  {
+    if (!(value.is_array() and std::all_of(value.begin(), value.end(),
+                                           [](const json& p) { return is_number_list(p, 2); })))
+      wrong("a list of [t, value] pairs");
+    return to_doubles(value);
   }
   if (t == "points")
   {
@@ -541,6 +586,38 @@ void check_semantics(const json& cfg, const std::string& source)
   check_manufactured(cfg, source);
 }
 
+/// The value of a datum that may be timed ({"value": ..., "history": ...})
+const json& value_of(const json& datum)
+{
+  return datum.is_object() and datum.contains("value") ? datum["value"] : datum;
+}
+
+History history_of(const json& datum)
+{
+  History h;
+  if (!(datum.is_object() and datum.contains("history")))
+    return h;
+  const json& j = datum["history"];
+  if (j.contains("ramp"))
+  {
+    h.kind = History::Kind::ramp;
+    h.ramp_time = j["ramp"].get<double>();
+  }
+  else if (j.contains("sine"))
+  {
+    h.kind = History::Kind::sine;
+    h.frequency = j["sine"]["frequency"].get<double>();
+    h.phase = j["sine"]["phase"].get<double>();
+  }
+  else
+  {
+    h.kind = History::Kind::table;
+    for (const auto& row : j["table"])
+      h.table.emplace_back(row[0].get<double>(), row[1].get<double>());
+  }
+  return h;
+}
+
 bool is_index(const std::string& s, const json& node)
 {
   return node.is_array() and !s.empty() and s.size() < 10
@@ -602,6 +679,31 @@ void apply_override(json& cfg, const std::string& text,
     fail(source, "--set " + printable(key) + ": cannot set '" + printable(last) + "' here");
 }
 } // namespace
+
+double History::factor(double t) const
+{
+  switch (kind)
+  {
+  case Kind::ramp:
+    return std::min(t / ramp_time, 1.0);
+  case Kind::sine:
+    return std::sin(2.0 * M_PI * frequency * t + phase);
+  case Kind::table:
+  {
+    if (t <= table.front().first)
+      return table.front().second;
+    if (t >= table.back().first)
+      return table.back().second;
+    const auto hi = std::upper_bound(table.begin(), table.end(), t,
+                                     [](double x, const auto& row) { return x < row.first; });
+    const auto lo = hi - 1;
+    const double w = (t - lo->first) / (hi->first - lo->first);
+    return (1 - w) * lo->second + w * hi->second;
+  }
+  default:
+    return 1.0;
+  }
+}
 
 std::string closest_key(const std::string& key,
                         const std::vector<std::string>& candidates)
@@ -676,6 +778,9 @@ RunSettings run_settings(const json& cfg)
     s.probes.push_back(x);
   }
   s.output = {cfg["output"]["xdmf"].get<bool>(), cfg["output"]["nodal"].get<std::string>()};
+  for (const auto& [key, constant] : {std::pair{"body_force", "f0"}, std::pair{"charge_density", "q0"}})
+    if (cfg["loads"].contains(key))
+      s.timed.push_back({"", constant, history_of(cfg["loads"][key])});
   std::map<std::string, json> sorted;
   for (const auto& [name, bc] : cfg["boundaries"].items())
     sorted[name] = bc;
@@ -689,8 +794,9 @@ RunSettings run_settings(const json& cfg)
       else
       {
         d.displacement.emplace();
-        for (const auto& c : bc["displacement"])
+        for (const auto& c : value_of(bc["displacement"]))
           d.displacement->push_back(c.is_null() ? std::nullopt : std::optional(c.get<double>()));
+        d.displacement_history = history_of(bc["displacement"]);
       }
     }
     if (bc.contains("potential"))
@@ -698,8 +804,14 @@ RunSettings run_settings(const json& cfg)
       if (bc["potential"] == "exact")
         d.potential_exact = true;
       else
-        d.potential = bc["potential"].get<double>();
+      {
+        d.potential = value_of(bc["potential"]).get<double>();
+        d.potential_history = history_of(bc["potential"]);
+      }
     }
+    for (const auto& [key, constant] : {std::pair{"traction", "fF"}, std::pair{"surface_charge", "qF"}})
+      if (bc.contains(key))
+        s.timed.push_back({name, constant, history_of(bc[key])});
     if (d.displacement or d.displacement_exact or d.potential or d.potential_exact)
       s.dirichlet.push_back(std::move(d));
   }
@@ -743,8 +855,8 @@ void set_constants(const json& cfg, const ConstantMap& constants,
   set_value(constants, "g", cfg["contact"]["gap"]);
   set_value(constants, "k", cfg["time"]["T"].get<double>() / cfg["time"]["steps"].get<double>());
   if (cfg["loads"].contains("body_force"))
-    set_value(constants, "f0", cfg["loads"]["body_force"]);
-  set_value(constants, "q0", cfg["loads"]["charge_density"]);
+    set_value(constants, "f0", value_of(cfg["loads"]["body_force"]));
+  set_value(constants, "q0", value_of(cfg["loads"]["charge_density"]));
   for (const auto& [region, material] : materials)
   {
     if (cfg.contains("regions") and !cfg["regions"].contains(region))
@@ -769,8 +881,8 @@ void set_constants(const json& cfg, const ConstantMap& constants,
     }
     const auto& load = loads.at(name);
     if (bc.contains("traction"))
-      set_value(load, "fF", bc["traction"]);
-    set_value(load, "qF", bc.value("surface_charge", 0.0));
+      set_value(load, "fF", value_of(bc["traction"]));
+    set_value(load, "qF", bc.contains("surface_charge") ? value_of(bc["surface_charge"]) : json(0.0));
   }
   if (cfg.contains("manufactured"))
   {

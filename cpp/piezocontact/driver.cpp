@@ -172,7 +172,7 @@ json run_config(const RunRequest& request, MPI_Comm comm, const ModelFactory& ma
   const json cfg = resolve_materials(checked, d);
   Model model = make_model(mesh, cfg);
   set_constants(cfg, model.constants, model.materials, model.loads, request.source);
-  Problem problem(std::move(model), settings.dirichlet, request.source);
+  Problem problem(std::move(model), settings.dirichlet, request.source, settings.timed);
 
   json summary;
   if (request.resume)

@@ -13,7 +13,7 @@ namespace piezocontact
 using namespace dolfinx;
 
 Problem::Problem(Model model_, const std::vector<DirichletSettings>& dirichlet,
-                 const std::string& source)
+                 const std::string& source, const std::vector<TimedConstant>& timed)
     : model(std::move(model_)), comm(model.mesh.mesh->comm()), mesh(model.mesh.mesh),
       W(model.W), x(model.x), x_prev(model.x_prev)
 {
@@ -38,8 +38,16 @@ Problem::Problem(Model model_, const std::vector<DirichletSettings>& dirichlet,
     phi_exact = std::make_shared<fem::Function<double>>(V_phi);
     phi_exact->name = "phi_exact";
   }
-  set_time(0.0, model.constants.at("k")->value.at(0));
+  for (const auto& c : timed)
+  {
+    if (c.history.kind == History::Kind::constant)
+      continue;
+    auto& values = (c.boundary.empty() ? model.constants : model.loads.at(c.boundary))
+                       .at(c.name)->value;
+    _scaled.push_back({std::span(values), values, c.history});
+  }
   create_bcs(dirichlet, source);
+  set_time(0.0, model.constants.at("k")->value.at(0));
 }
 
 void Problem::set_time(double t, double k)
@@ -48,6 +56,12 @@ void Problem::set_time(double t, double k)
   model.constants.at("k")->value = {k};
   if (auto it = model.constants.find("t"); it != model.constants.end())
     it->second->value = {t};
+  for (auto& d : _scaled)
+  {
+    const double f = d.history.factor(t);
+    for (std::size_t i = 0; i < d.base.size(); ++i)
+      d.values[i] = f * d.base[i];
+  }
   if (u_exact)
     u_exact->interpolate(*model.u_exact);
   if (phi_exact)
@@ -121,21 +135,47 @@ ForceBalance Problem::force_balance() const
   return force_balance(r.array().subspan(0, W->dofmap()->index_map->size_local() * bs));
 }
 
-double Problem::applied_load() const
+double Problem::load_sum() const
 {
-  if (_applied_load >= 0.0 or model.L.empty())
-    return std::max(_applied_load, 0.0);
   const int bs = W->dofmap()->index_map_bs();
   const auto L = assemble(model.L);
   std::vector<std::int32_t> constrained = bc_dofs;
   std::sort(constrained.begin(), constrained.end());
-  double local = 0.0;
+  double local = 0.0, global = 0.0;
   const auto a = L.array();
   const std::int32_t owned = W->dofmap()->index_map->size_local() * bs;
   for (const std::int32_t d : u_dofs)
     if (d < owned and !std::binary_search(constrained.begin(), constrained.end(), d))
       local += std::abs(a[d]);
-  MPI_Allreduce(&local, &_applied_load, 1, MPI_DOUBLE, MPI_SUM, comm);
+  MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_SUM, comm);
+  return global;
+}
+
+// With histories, the loads' amplitude (every timed datum at factor 1)
+// keeps the scale where a varying load passes through zero: the round-off
+// of the internal forces (elastic and viscous, cancelling) is measured
+// against the forces of the run, not against a momentary zero
+double Problem::applied_load() const
+{
+  if (_applied_load >= 0.0 or model.L.empty())
+    return std::max(_applied_load, 0.0);
+  _applied_load = load_sum();
+  if (!_scaled.empty())
+  {
+    if (_load_amplitude < 0.0)
+    {
+      std::vector<std::vector<double>> now;
+      for (auto& d : _scaled)
+      {
+        now.emplace_back(d.values.begin(), d.values.end());
+        std::copy(d.base.begin(), d.base.end(), d.values.begin());
+      }
+      _load_amplitude = load_sum();
+      for (std::size_t i = 0; i < _scaled.size(); ++i)
+        std::copy(now[i].begin(), now[i].end(), _scaled[i].values.begin());
+    }
+    _applied_load = std::max(_applied_load, _load_amplitude);
+  }
   return _applied_load;
 }
 
@@ -185,6 +225,7 @@ void Problem::create_bcs(const std::vector<DirichletSettings>& dirichlet,
       if (!g)
         throw ConfigError(source + ": boundaries." + bc.boundary
                           + ".displacement: \"exact\" needs a manufactured solution");
+      scale_in_time(g, bc.displacement_history);
       // one condition per fixed component, its values taken from g on V_u
       // (W->sub({0, i}) is not W.sub(0).sub(i) in 0.5.2: chain single levels)
       auto& comp = clamped_dofs[bc.boundary];
@@ -212,11 +253,22 @@ void Problem::create_bcs(const std::vector<DirichletSettings>& dirichlet,
       if (!g)
         throw ConfigError(source + ": boundaries." + bc.boundary
                           + ".potential: \"exact\" needs a manufactured solution");
+      scale_in_time(g, bc.potential_history);
       auto dofs = fem::locate_dofs_topological({*W->sub({1}), *V_phi}, fdim, facets);
       bc_dofs.insert(bc_dofs.end(), dofs[0].begin(), dofs[0].end());
       bcs.push_back(std::make_shared<fem::DirichletBC<double>>(g, std::move(dofs), W->sub({1})));
     }
   }
+}
+
+void Problem::scale_in_time(const std::shared_ptr<fem::Function<double>>& g,
+                            const History& history)
+{
+  if (history.kind == History::Kind::constant)
+    return;
+  _scaled_bc_values.push_back(g); // kept alive with its values
+  const auto values = g->x()->mutable_array();
+  _scaled.push_back({values, std::vector<double>(values.begin(), values.end()), history});
 }
 
 void Problem::update_fields()

@@ -33,15 +33,18 @@ struct ForceBalance
 class Problem
 {
 public:
-  /// Throws ConfigError if a setting names a boundary the mesh lacks
+  /// Throws ConfigError if a setting names a boundary the mesh lacks.
+  /// `timed`: the model's Constants that vary in time (their values as
+  /// set now are scaled by their history at every set_time)
   Problem(Model model, const std::vector<DirichletSettings>& dirichlet,
-          const std::string& source);
+          const std::string& source, const std::vector<TimedConstant>& timed = {});
 
   /// Copy the mixed solution x into the collapsed u and phi
   void update_fields();
 
-  /// Set the Constants "k" and (if the model has it) "t", and interpolate
-  /// the exact fields at t
+  /// Set the Constants "k" and (if the model has it) "t", the loads and
+  /// Dirichlet values that have a history, and interpolate the exact fields
+  /// at t
   void set_time(double t, double k);
 
   /// sqrt of each squared error functional of the model, on every rank
@@ -63,7 +66,8 @@ public:
   ForceBalance force_balance() const;
 
   /// Sum of |applied loads| over the free u dofs at the current t (the
-  /// model's L; 0 without one), assembled once per time. Collective.
+  /// model's L; 0 without one), at least that of the loads' amplitude when
+  /// some vary in time; assembled once per time. Collective.
   double applied_load() const;
 
   /// A sum of linear forms on W, assembled (ghost contributions added to
@@ -90,6 +94,21 @@ public:
 
 private:
   mutable double _applied_load = -1.0; ///< at the current t; < 0: not yet
+  /// A datum scaled in time: where its values live, their value at
+  /// factor 1, and its history
+  struct Scaled
+  {
+    std::span<double> values;
+    std::vector<double> base;
+    History history;
+  };
+  mutable std::vector<Scaled> _scaled;
+  mutable double _load_amplitude = -1.0; ///< applied_load at factor 1; < 0: not yet
+  double load_sum() const;
+  std::vector<std::shared_ptr<dolfinx::fem::Function<double>>> _scaled_bc_values;
   void create_bcs(const std::vector<DirichletSettings>& dirichlet, const std::string& source);
+  /// Scale the values of a Dirichlet function by a history at set_time
+  void scale_in_time(const std::shared_ptr<dolfinx::fem::Function<double>>& g,
+                     const History& history);
 };
 } // namespace piezocontact

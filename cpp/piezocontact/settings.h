@@ -10,6 +10,30 @@
 
 namespace piezocontact
 {
+/// How a prescribed datum varies in time: datum(t) = value * factor(t)
+struct History
+{
+  enum class Kind
+  {
+    constant, ///< factor 1 (t > 0, the first step's time and on)
+    ramp,     ///< min(t / t_r, 1)
+    sine,     ///< sin(2 pi frequency t + phase)
+    table     ///< piecewise linear in (t, factor), constant beyond the ends
+  };
+  Kind kind = Kind::constant;
+  double ramp_time = 0.0, frequency = 0.0, phase = 0.0;
+  std::vector<std::pair<double, double>> table;
+  double factor(double t) const;
+};
+
+/// A runtime Constant of the forms scaled by a history: `boundary` names
+/// the boundary whose load it is (empty: a Constant shared by every term)
+struct TimedConstant
+{
+  std::string boundary, name;
+  History history;
+};
+
 /// Dirichlet data on one named boundary; "exact" takes the model's exact
 /// field at the current time
 struct DirichletSettings
@@ -20,6 +44,7 @@ struct DirichletSettings
   bool displacement_exact = false;
   std::optional<double> potential;
   bool potential_exact = false;
+  History displacement_history, potential_history;
 };
 
 struct NewtonSettings
@@ -46,5 +71,8 @@ struct RunSettings
   std::vector<std::array<double, 3>> probes;
   OutputSettings output;
   std::vector<DirichletSettings> dirichlet;
+  /// Loads that vary in time (set_constants sets their value, the time
+  /// loop scales it at every step)
+  std::vector<TimedConstant> timed;
 };
 } // namespace piezocontact
