@@ -137,6 +137,30 @@ NamedMesh box(const json& cfg, MPI_Comm comm)
   return out;
 }
 
+/// A file's tags of named groups ({name: file tag}) renumbered 1, 2, ...
+/// in sorted name order (slot_of: name -> new tag); untagged groups dropped
+std::shared_ptr<mesh::MeshTags<std::int32_t>>
+renumbered(std::shared_ptr<mesh::Mesh> m, int dim, const json& names,
+           const std::vector<std::int32_t>& indices, const std::vector<std::int32_t>& values,
+           std::map<std::string, int>& slot_of)
+{
+  std::map<std::string, int> sorted;
+  for (const auto& [name, tag] : names.items())
+    sorted[name] = tag.get<int>();
+  std::map<int, int> slot_of_file_tag;
+  int slot = 0;
+  for (const auto& [name, tag] : sorted)
+  {
+    slot_of[name] = ++slot;
+    slot_of_file_tag[tag] = slot;
+  }
+  std::vector<std::pair<std::int32_t, std::int32_t>> tagged;
+  for (std::size_t i = 0; i < indices.size(); ++i)
+    if (auto it = slot_of_file_tag.find(values[i]); it != slot_of_file_tag.end())
+      tagged.emplace_back(indices[i], it->second);
+  return make_tags(m, dim, std::move(tagged));
+}
+
 NamedMesh read_xdmf(const std::filesystem::path& file, MPI_Comm comm,
                     const std::string& source)
 {
@@ -195,42 +219,12 @@ NamedMesh read_xdmf(const std::filesystem::path& file, MPI_Comm comm,
     throw ConfigError(source + ": mesh: cannot read a mesh \"mesh\" with facet "
                       "tags \"facets\" from " + file.string() + ": " + e.what());
   }
-  std::map<std::string, int> sorted;
-  for (const auto& [name, tag] : names.items())
-    sorted[name] = tag.get<int>();
-  std::map<int, int> slot_of_file_tag;
-  int slot = 0;
-  for (const auto& [name, tag] : sorted)
-  {
-    out.tag_of[name] = ++slot;
-    slot_of_file_tag[tag] = slot;
-  }
-  std::vector<std::pair<std::int32_t, std::int32_t>> tagged;
-  for (std::size_t i = 0; i < tag_indices.size(); ++i)
-    if (auto it = slot_of_file_tag.find(tag_values[i]); it != slot_of_file_tag.end())
-      tagged.emplace_back(tag_indices[i], it->second);
-  out.facet_tags = make_tags(out.mesh, out.mesh->topology().dim() - 1, std::move(tagged));
+  const int tdim = out.mesh->topology().dim();
+  out.facet_tags = renumbered(out.mesh, tdim - 1, names, tag_indices, tag_values, out.tag_of);
   if (regions.is_null())
-  {
     one_region(out);
-    return out;
-  }
-  // regions: cell tags renumbered 1, 2, ... in sorted name order
-  std::map<std::string, int> sorted_regions;
-  for (const auto& [name, tag] : regions.items())
-    sorted_regions[name] = tag.get<int>();
-  std::map<int, int> slot_of_cell_tag;
-  slot = 0;
-  for (const auto& [name, tag] : sorted_regions)
-  {
-    out.region_of[name] = ++slot;
-    slot_of_cell_tag[tag] = slot;
-  }
-  std::vector<std::pair<std::int32_t, std::int32_t>> cells;
-  for (std::size_t i = 0; i < cell_indices.size(); ++i)
-    if (auto it = slot_of_cell_tag.find(cell_values[i]); it != slot_of_cell_tag.end())
-      cells.emplace_back(cell_indices[i], it->second);
-  out.cell_tags = make_tags(out.mesh, out.mesh->topology().dim(), std::move(cells));
+  else
+    out.cell_tags = renumbered(out.mesh, tdim, regions, cell_indices, cell_values, out.region_of);
   return out;
 }
 } // namespace
