@@ -68,7 +68,11 @@ def model(cell_name):
         # the C++ loop compares it to decide whether the LU can be kept
         "J_contact": pf.jacobian(F_contact, x, dx_trial),
         "boundary_measure": 1.0 * ds1,
+        # per electrode and region: the charge int D.nu
+        "electrode_charge": pf.electrode_charge(x, ds1, mat),
     }
+    forms["contact_pressure_load"], forms["contact_nodal_area"] = \
+        pf.contact_pressure_moments(x, y, ds1, data)
     for i, axis in enumerate("xyz"[:d]):
         forms[f"contact_force_{axis}"] = pf.contact_force(x, ds1, data, i)
     midpoint = MIDPOINT[cell_name]

@@ -145,6 +145,27 @@ def contact_force(x, ds, data, i, law=p):
     return -contact_pressure(u, n, data, law) * n[i] * ds(degree=CONTACT_QUADRATURE_DEGREE)
 
 
+def electrode_charge(x, ds, mat):
+    """Charge of an electrode, int D . nu over its facets that bound cells of
+    one material (ds: those facets), nu outward: C/m per unit thickness in
+    2D, C in 3D."""
+    u, phi = ufl.split(x)
+    n = ufl.FacetNormal(x.ufl_domain())
+    return ufl.dot(electric_displacement(u, phi, mat), n) * ds
+
+
+def contact_pressure_moments(x, y, ds, data, law=p):
+    """int p(u.nu - g) psi ds and int psi ds over the contact facets (ds),
+    psi the potential's test function (P1: one per vertex). At a vertex, the
+    first over the second is the lumped L2 projection of the contact
+    pressure; the second alone is the vertex's share of Gamma_C."""
+    u, _ = ufl.split(x)
+    _, psi = ufl.split(y)
+    n = ufl.FacetNormal(x.ufl_domain())
+    return (contact_pressure(u, n, data, law) * psi * ds(degree=CONTACT_QUADRATURE_DEGREE),
+            psi * ds)
+
+
 def residual(x, x_prev, y, dx, ds, regions, boundaries, contact, data, law=p):
     """The whole residual as one UFL form (the reference engine's view):
     dx/ds carry the cell/facet tags, `regions` maps a cell tag to its

@@ -85,7 +85,9 @@ void declare_model(py::module& m)
       .def_readonly("tag_of", &NamedMesh::tag_of)
       .def_readonly("region_of", &NamedMesh::region_of)
       .def("boundary_facets", &NamedMesh::boundary_facets, py::arg("name"))
-      .def("region_cells", &NamedMesh::region_cells, py::arg("name"));
+      .def("region_cells", &NamedMesh::region_cells, py::arg("name"))
+      .def("boundary_facets_of", &NamedMesh::boundary_facets_of, py::arg("boundary"),
+           py::arg("region"));
 
   py::class_<RegionFields>(m, "RegionFields", "The cell-wise output of one region")
       .def(py::init<>())
@@ -112,6 +114,9 @@ void declare_model(py::module& m)
       .def_readwrite("phi_exact", &Model::phi_exact)
       .def_readwrite("squared_errors", &Model::squared_errors)
       .def_readwrite("boundary_measures", &Model::boundary_measures)
+      .def_readwrite("electrode_charge", &Model::electrode_charge)
+      .def_readwrite("contact_pressure_load", &Model::contact_pressure_load)
+      .def_readwrite("contact_nodal_area", &Model::contact_nodal_area)
       .def_readwrite("L", &Model::L);
 }
 
@@ -149,6 +154,26 @@ void declare_problem(py::module& m)
                                    out(p.bcs.begin(), p.bcs.end());
                                return out;
                              })
+      .def_property_readonly(
+          "fixed_bcs",
+          [](const Problem& p)
+          {
+            std::vector<std::shared_ptr<const dolfinx::fem::DirichletBC<double>>> out;
+            for (const auto& bc : p.bcs)
+              if (std::none_of(p.electrodes.begin(), p.electrodes.end(),
+                               [&bc](const Electrode& e) { return e.floating and e.bc == bc; }))
+                out.push_back(bc);
+            return out;
+          },
+          "The Dirichlet conditions but those of floating electrodes")
+      .def_readonly("electrodes", &Problem::electrodes)
+      .def("target_charges", &Problem::target_charges)
+      .def(
+          "reaction_charges",
+          [](const Problem& p, const Array& r) { return p.reaction_charges(view(r)); },
+          py::arg("r"), "Charge on each electrode: minus the sum of r (owned entries of an "
+                        "unconstrained residual) over its dofs")
+      .def("electrode_charges", &Problem::electrode_charges)
       .def_readonly("u_dofs", &Problem::u_dofs)
       .def_readonly("phi_dofs", &Problem::phi_dofs)
       .def_readonly("bc_dofs", &Problem::bc_dofs)
@@ -160,6 +185,10 @@ void declare_problem(py::module& m)
           "force_balance",
           [](const Problem& p, const Array& r) { return p.force_balance(view(r)); },
           py::arg("r"), "The balance of forces in a residual (owned entries, before its BC rows)");
+  py::class_<Electrode>(m, "Electrode", "A boundary with a prescribed or floating potential")
+      .def_readonly("name", &Electrode::name)
+      .def_readonly("dofs", &Electrode::dofs)
+      .def_readonly("floating", &Electrode::floating);
   py::class_<ForceBalance>(m, "ForceBalance", "What a residual says about equilibrium")
       .def_readonly("unbalanced", &ForceBalance::unbalanced)
       .def_readonly("supported", &ForceBalance::supported);

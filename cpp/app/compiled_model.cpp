@@ -24,7 +24,8 @@ struct Kernels
 {
   ufcx_function_space* (*space)(const char*);
   ufcx_form *F_region, *J_region, *L_region, *F_boundary, *L_boundary, *F_contact,
-      *J_contact, *boundary_measure;
+      *J_contact, *boundary_measure, *electrode_charge, *contact_pressure_load,
+      *contact_nodal_area;
   std::vector<ufcx_form*> contact_force;
   ufcx_expression *electric_displacement, *stress;
 };
@@ -42,8 +43,10 @@ struct ManufacturedKernels
   {                                                                                     \
     functionspace_form_##P##_F_region, form_##P##_F_region, form_##P##_J_region,        \
         form_##P##_L_region, form_##P##_F_boundary, form_##P##_L_boundary,              \
-        form_##P##_F_contact, form_##P##_J_contact, form_##P##_boundary_measure, {},    \
-        expression_##P##_electric_displacement, expression_##P##_stress                 \
+        form_##P##_F_contact, form_##P##_J_contact, form_##P##_boundary_measure,        \
+        form_##P##_electrode_charge, form_##P##_contact_pressure_load,                  \
+        form_##P##_contact_nodal_area, {}, expression_##P##_electric_displacement,      \
+        expression_##P##_stress                                                         \
   }
 #define PIEZO_MANUFACTURED(P)                                                           \
   ManufacturedKernels                                                                   \
@@ -172,6 +175,16 @@ Model compiled_model(const NamedMesh& named, const json& cfg)
     m.L.push_back(form(mms.L_contact, 1, shared, facet, contact));
   for (const auto* f : k.contact_force)
     m.contact_force.push_back(form(f, 0, shared, facet, contact));
+  m.contact_pressure_load = form(k.contact_pressure_load, 1, shared, facet, contact);
+  m.contact_nodal_area = form(k.contact_nodal_area, 1, shared, facet, contact);
+  // every boundary with a potential condition is an electrode: its charge,
+  // one term per region it bounds (on every rank, whatever it holds)
+  for (const auto& [name, bc] : cfg["boundaries"].items())
+    if ((bc.contains("potential") or bc.contains("floating")) and named.tag_of.contains(name))
+      for (const auto& [region, material] : m.materials)
+        m.electrode_charge[name].push_back(
+            form(k.electrode_charge, 0, merged({&m.constants, &material}), facet,
+                 mark(mesh, tdim - 1, named.boundary_facets_of(name, region))));
 
   if (manufactured)
   {

@@ -536,6 +536,29 @@ void check_material(const json& spec, const std::string& path, const std::string
                      + std::to_string(d) + "x" + std::to_string(m) + ")");
 }
 
+// A floating potential is known only up to a constant unless some boundary
+// holds phi: the bordered system would be singular
+void check_electrodes(const json& cfg, const std::string& source)
+{
+  std::string floating;
+  bool grounded = false;
+  for (const auto& [name, bc] : cfg["boundaries"].items())
+  {
+    grounded = grounded or bc.contains("potential");
+    if (bc.contains("floating") and floating.empty())
+      floating = name;
+  }
+  if (floating.empty())
+    return;
+  if (cfg.contains("manufactured"))
+    fail(source, join("boundaries", floating) + ".floating: not with a manufactured solution "
+                                                "(its Dirichlet data are the exact solution's)");
+  if (!grounded)
+    fail(source, join("boundaries", floating) + ".floating: no boundary has a prescribed "
+                 "potential, so the floating one is known only up to a constant (ground an "
+                 "electrode: potential 0)");
+}
+
 // Rules that span keys (the same list as config.py's _check_semantics).
 void check_semantics(const json& cfg, const std::string& source)
 {
@@ -577,7 +600,12 @@ void check_semantics(const json& cfg, const std::string& source)
       fail(source, where + ": traction and contact are exclusive");
     if (bc.contains("potential") and bc.contains("surface_charge"))
       fail(source, where + ": potential and surface_charge are exclusive");
+    for (const char* other : {"potential", "surface_charge"})
+      if (bc.contains("floating") and bc.contains(other))
+        fail(source, where + ": floating and " + other + " are exclusive (a floating "
+                             "electrode's potential is an unknown, its charge is floating.charge)");
   }
+  check_electrodes(cfg, source);
   // Frictionless contact pushes only along the normal: without a clamped
   // boundary the body can slide, and the Jacobian is singular
   if (!held)
@@ -809,10 +837,16 @@ RunSettings run_settings(const json& cfg)
         d.potential_history = history_of(bc["potential"]);
       }
     }
+    if (bc.contains("floating"))
+    {
+      d.floating = true;
+      d.charge = value_of(bc["floating"]["charge"]).get<double>();
+      d.charge_history = history_of(bc["floating"]["charge"]);
+    }
     for (const auto& [key, constant] : {std::pair{"traction", "fF"}, std::pair{"surface_charge", "qF"}})
       if (bc.contains(key))
         s.timed.push_back({name, constant, history_of(bc[key])});
-    if (d.displacement or d.displacement_exact or d.potential or d.potential_exact)
+    if (d.displacement or d.displacement_exact or d.potential or d.potential_exact or d.floating)
       s.dirichlet.push_back(std::move(d));
   }
   return s;

@@ -31,6 +31,22 @@ std::vector<std::int32_t> NamedMesh::region_cells(const std::string& name) const
   return tagged(cell_tags.get(), region_of.at(name));
 }
 
+// An exterior facet has one cell: the facet is the region's if that cell is
+std::vector<std::int32_t> NamedMesh::boundary_facets_of(const std::string& boundary,
+                                                        const std::string& region) const
+{
+  const int tdim = mesh->topology().dim();
+  mesh->topology_mutable().create_connectivity(tdim - 1, tdim);
+  const auto f_to_c = mesh->topology().connectivity(tdim - 1, tdim);
+  std::vector<std::int32_t> cells = region_cells(region);
+  std::sort(cells.begin(), cells.end());
+  std::vector<std::int32_t> out;
+  for (const std::int32_t f : boundary_facets(boundary))
+    if (std::binary_search(cells.begin(), cells.end(), f_to_c->links(f)[0]))
+      out.push_back(f);
+  return out;
+}
+
 std::shared_ptr<mesh::MeshTags<std::int32_t>>
 mark(std::shared_ptr<const mesh::Mesh> mesh, int dim, std::vector<std::int32_t> entities)
 {

@@ -33,6 +33,9 @@ struct NamedMesh
   /// Local indices of the facets of a boundary / the cells of a region
   std::vector<std::int32_t> boundary_facets(const std::string& name) const;
   std::vector<std::int32_t> region_cells(const std::string& name) const;
+  /// The facets of a boundary that bound cells of a region
+  std::vector<std::int32_t> boundary_facets_of(const std::string& boundary,
+                                               const std::string& region) const;
 };
 
 /// Tags marking `entities` (local indices, any order) of dimension `dim`
@@ -87,5 +90,14 @@ struct Model
 
   /// The functional 1 ds over each named boundary: its length (area in 3D)
   std::map<std::string, std::shared_ptr<const dolfinx::fem::Form<double>>> boundary_measures;
+
+  /// Per electrode (a boundary with a prescribed or floating potential):
+  /// its charge int D.nu ds, one term per region it bounds (summed)
+  std::map<std::string, FormList> electrode_charge;
+
+  /// Linear forms on W over the contact facets, read at the phi dofs (one
+  /// per vertex): int p psi ds and int psi ds, whose ratio is the lumped
+  /// contact pressure. Optional.
+  std::shared_ptr<const dolfinx::fem::Form<double>> contact_pressure_load, contact_nodal_area;
 };
 } // namespace piezocontact

@@ -6,6 +6,8 @@
 #include <dolfinx/la/SparsityPattern.h>
 #include <dolfinx/la/petsc.h>
 
+#include <algorithm>
+
 namespace piezocontact
 {
 using namespace dolfinx;
@@ -64,13 +66,24 @@ void assemble_into(Mat M, const FormList& terms,
   MatAssemblyBegin(M, MAT_FINAL_ASSEMBLY);
   MatAssemblyEnd(M, MAT_FINAL_ASSEMBLY);
 }
+/// J without Dirichlet conditions where floating electrodes need it (no
+/// matrix otherwise)
+la::petsc::Matrix unconstrained_jacobian(const Problem& p)
+{
+  if (std::none_of(p.electrodes.begin(), p.electrodes.end(),
+                   [](const Electrode& e) { return e.floating; }))
+    return la::petsc::Matrix(nullptr, false);
+  la::petsc::Matrix J(create_matrix(p.model.J, *p.W), false);
+  assemble_into(J.mat(), p.model.J, {}, *p.W);
+  return J;
+}
 } // namespace
 
 NonlinearSystem::NonlinearSystem(Problem& p, FieldwiseConvergence& monitor, KSP ksp,
                                  bool reuse_lu)
     : b(la::petsc::create_vector(*p.W->dofmap()->index_map, p.W->dofmap()->index_map_bs()),
         false),
-      A(create_matrix(p.model.J, *p.W), false),
+      A(create_matrix(p.model.J, *p.W), false), floating(p, unconstrained_jacobian(p).mat()),
       _p(p), _monitor(monitor), _ksp(ksp), _reuse(reuse_lu),
       _Jc(create_matrix(p.model.J_contact, *p.W), false)
 {
@@ -91,6 +104,17 @@ void NonlinearSystem::F(const Vec x, Vec r)
   VecGhostUpdateBegin(r, ADD_VALUES, SCATTER_REVERSE);
   VecGhostUpdateEnd(r, ADD_VALUES, SCATTER_REVERSE);
   record_reactions(r);
+  if (!floating.empty())
+  {
+    PetscInt n;
+    VecGetLocalSize(r, &n);
+    const PetscScalar *ra, *xa;
+    VecGetArrayRead(r, &ra);
+    VecGetArrayRead(x, &xa);
+    floating.residual(std::span<const double>(ra, n), std::span<const double>(xa, n));
+    VecRestoreArrayRead(x, &xa);
+    VecRestoreArrayRead(r, &ra);
+  }
   fem::petsc::set_bc(r, _p.bcs, x, -1.0);
 }
 
@@ -138,5 +162,6 @@ void NonlinearSystem::J(const Vec, Mat M)
   ScopedTimer timer(factorisation, "LU factorisation");
   KSPSetOperators(_ksp, M, M);
   KSPSetUp(_ksp);
+  floating.factorised(_ksp);
 }
 } // namespace piezocontact

@@ -8,10 +8,13 @@
 //    safe: a smooth p changes J_contact at every iterate and J is rebuilt.
 //  * the reactions of clamped boundaries, read from the residual of the
 //    current iterate before the Dirichlet rows are overwritten;
+//  * floating electrodes (floating.h): their charge residuals, read there
+//    too, and their unit responses after each factorisation;
 //  * timings and counts of every operation, for the benchmarks.
 #pragma once
 
 #include "fieldwise.h"
+#include "floating.h"
 #include "problem.h"
 #include "timing.h"
 
@@ -39,6 +42,8 @@ public:
   std::map<std::string, std::vector<double>> reactions;
   /// ... and the balance of forces in it
   ForceBalance balance;
+  /// The floating electrodes' potentials and charge equations
+  FloatingPotentials floating;
   /// The iterate (local dofs, with ghosts) and k at which the Jacobian in use
   /// was assembled: a resumed run rebuilds the same matrix, LU and scaling
   std::vector<double> x_assembled;

@@ -45,6 +45,9 @@ std::string failure_reason(const fs::path& dir, int saved_errno, const std::stri
   return fallback;
 }
 
+/// The P1 fields written as nodal/NAME_NNNN.npy
+constexpr const char* nodal_names[] = {"u", "phi", "contact_pressure"};
+
 /// [x, y, (z,) values...] of the owned dofs of a collapsed P1 function, on rank 0
 std::pair<std::vector<double>, std::size_t>
 gather_nodal(const fem::Function<double>& f, MPI_Comm comm)
@@ -239,8 +242,8 @@ Writer::Writer(const Problem& problem, const OutputSettings& settings, const fs:
                    fs::remove_all(dir / "solution");
                    fs::remove(dir / "solution.xdmf");
                    fs::remove(dir / "solution.h5");
-                   remove_numbered_after(dir / "nodal", "u_", ".npy", -1);
-                   remove_numbered_after(dir / "nodal", "phi_", ".npy", -1);
+                   for (const char* f : nodal_names)
+                     remove_numbered_after(dir / "nodal", std::string(f) + "_", ".npy", -1);
                  }
                  remove_numbered_after(dir / "solution", "step_", ".h5", resume_step);
                  remove_numbered_after(dir / "solution", "step_", ".xdmf", -1);
@@ -248,8 +251,9 @@ Writer::Writer(const Problem& problem, const OutputSettings& settings, const fs:
                  // may land between a summary and the removal of its predecessor's)
                  remove_numbered_after(dir / "checkpoint", "state_", ".npy", -1,
                                        resume_step > 0 ? resume_step : -1);
-                 remove_numbered_after(dir / "nodal", "u_", ".npy", resume_step);
-                 remove_numbered_after(dir / "nodal", "phi_", ".npy", resume_step);
+                 for (const char* f : nodal_names)
+                   remove_numbered_after(dir / "nodal", std::string(f) + "_", ".npy",
+                                         resume_step);
                  fs::create_directories(dir / "nodal");
                  fs::create_directories(dir / "solution");
                });
@@ -384,6 +388,8 @@ void Writer::write_xdmf_step(int step, double t)
              {
                for (const auto& fn : {_problem.u, _problem.phi, _D})
                  f.write_function(*fn, t, "/Xdmf/Domain");
+               if (_problem.contact_pressure)
+                 f.write_function(*_problem.contact_pressure, t, "/Xdmf/Domain");
                for (const auto& fn : _stress_components)
                  f.write_function(*fn, t, "/Xdmf/Domain");
              });
@@ -432,8 +438,11 @@ void Writer::write_step(int step, double t, bool final)
   if (_nodal == "all" or (_nodal == "final" and final))
   {
     const std::string num = numbered("%04d", step);
-    for (const auto& [name, f] : {std::pair{"u", _problem.u}, std::pair{"phi", _problem.phi}})
+    for (const auto& [name, f] : {std::pair{"u", _problem.u}, std::pair{"phi", _problem.phi},
+                                  std::pair{"contact_pressure", _problem.contact_pressure}})
     {
+      if (!f)
+        continue;
       const auto [rows, cols] = gather_nodal(*f, _problem.comm);
       collectively(_problem.comm, rank_of(_problem.comm) == 0,
                    [&, &rows = rows, cols = cols, name = name]

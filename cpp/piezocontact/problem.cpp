@@ -47,11 +47,18 @@ Problem::Problem(Model model_, const std::vector<DirichletSettings>& dirichlet,
     _scaled.push_back({std::span(values), values, c.history});
   }
   create_bcs(dirichlet, source);
+  check_electrodes_apart(source);
+  if (model.contact_pressure_load and model.contact_nodal_area)
+  {
+    contact_pressure = std::make_shared<fem::Function<double>>(V_phi);
+    contact_pressure->name = "contact_pressure";
+  }
   set_time(0.0, model.constants.at("k")->value.at(0));
 }
 
 void Problem::set_time(double t, double k)
 {
+  _t = t;
   _applied_load = -1.0; // loads may depend on t
   model.constants.at("k")->value = {k};
   if (auto it = model.constants.find("t"); it != model.constants.end())
@@ -256,9 +263,154 @@ void Problem::create_bcs(const std::vector<DirichletSettings>& dirichlet,
       scale_in_time(g, bc.potential_history);
       auto dofs = fem::locate_dofs_topological({*W->sub({1}), *V_phi}, fdim, facets);
       bc_dofs.insert(bc_dofs.end(), dofs[0].begin(), dofs[0].end());
+      Electrode e;
+      e.name = bc.boundary;
+      e.dofs = dofs[0];
       bcs.push_back(std::make_shared<fem::DirichletBC<double>>(g, std::move(dofs), W->sub({1})));
+      e.bc = bcs.back();
+      electrodes.push_back(std::move(e));
+    }
+    if (bc.floating)
+    {
+      // a Dirichlet condition whose value, the electrode's potential, the
+      // solver sets (floating.h)
+      auto g = std::make_shared<fem::Function<double>>(V_phi);
+      auto dofs = fem::locate_dofs_topological({*W->sub({1}), *V_phi}, fdim, facets);
+      bc_dofs.insert(bc_dofs.end(), dofs[0].begin(), dofs[0].end());
+      Electrode e;
+      e.name = bc.boundary;
+      e.dofs = dofs[0];
+      e.floating = true;
+      e.potential = g;
+      e.charge = bc.charge;
+      e.history = bc.charge_history;
+      bcs.push_back(std::make_shared<fem::DirichletBC<double>>(g, std::move(dofs), W->sub({1})));
+      e.bc = bcs.back();
+      electrodes.push_back(std::move(e));
     }
   }
+}
+
+// A vertex on two electrodes is seen whole only by its owner: mark each
+// electrode's dofs and gather the marks there
+void Problem::check_electrodes_apart(const std::string& source) const
+{
+  const auto& imap = W->dofmap()->index_map;
+  const int bs = W->dofmap()->index_map_bs();
+  const std::int32_t owned = imap->size_local() * bs;
+  std::vector<std::vector<char>> on(electrodes.size());
+  for (std::size_t e = 0; e < electrodes.size(); ++e)
+  {
+    la::Vector<double> mark(imap, bs);
+    for (auto d : electrodes[e].dofs)
+      mark.mutable_array()[d] = 1.0;
+    mark.scatter_rev([](double a, double b) { return std::max(a, b); });
+    on[e].assign(mark.array().begin(), mark.array().begin() + owned);
+  }
+  for (std::size_t e = 0; e < electrodes.size(); ++e)
+    for (std::size_t f = e + 1; f < electrodes.size(); ++f)
+    {
+      if (!electrodes[e].floating and !electrodes[f].floating)
+        continue; // two prescribed potentials: the last given wins, as before
+      int shared = 0;
+      for (std::int32_t i = 0; i < owned and !shared; ++i)
+        shared = on[e][i] and on[f][i];
+      MPI_Allreduce(MPI_IN_PLACE, &shared, 1, MPI_INT, MPI_LOR, comm);
+      if (shared)
+      {
+        const auto& fl = electrodes[e].floating ? electrodes[e] : electrodes[f];
+        const auto& other = electrodes[e].floating ? electrodes[f] : electrodes[e];
+        throw ConfigError(source + ": boundaries." + fl.name + ".floating: the electrode "
+                          "shares a vertex with the electrode " + other.name
+                          + " (a floating potential must be apart from other electrodes)");
+      }
+    }
+}
+
+std::vector<double> Problem::electrode_potentials(std::span<const double> x) const
+{
+  const std::int32_t owned
+      = W->dofmap()->index_map->size_local() * W->dofmap()->index_map_bs();
+  std::vector<double> local(2 * electrodes.size(), 0.0), global(local.size());
+  for (std::size_t e = 0; e < electrodes.size(); ++e)
+    for (auto d : electrodes[e].dofs)
+      if (d < owned)
+      {
+        local[2 * e] += x[d];
+        local[2 * e + 1] += 1.0;
+      }
+  MPI_Allreduce(local.data(), global.data(), global.size(), MPI_DOUBLE, MPI_SUM, comm);
+  std::vector<double> out(electrodes.size());
+  for (std::size_t e = 0; e < electrodes.size(); ++e)
+    out[e] = global[2 * e + 1] > 0 ? global[2 * e] / global[2 * e + 1] : 0.0;
+  return out; // the mean: exactly the value where it is uniform (to round-off)
+}
+
+void Problem::hold_floating_potentials(std::span<const double> x)
+{
+  const auto V = electrode_potentials(x);
+  for (std::size_t e = 0; e < electrodes.size(); ++e)
+    if (electrodes[e].floating)
+      hold(electrodes[e], V[e]);
+}
+
+void Problem::hold(Electrode& e, double V)
+{
+  auto g = e.potential->x()->mutable_array();
+  std::fill(g.begin(), g.end(), V);
+  e.held = V;
+}
+
+std::vector<double> Problem::reaction_charges(std::span<const double> r) const
+{
+  std::vector<double> local(electrodes.size(), 0.0), global(electrodes.size());
+  for (std::size_t e = 0; e < electrodes.size(); ++e)
+    for (auto d : electrodes[e].dofs)
+      if (d < std::int32_t(r.size()))
+        local[e] -= r[d];
+  MPI_Allreduce(local.data(), global.data(), global.size(), MPI_DOUBLE, MPI_SUM, comm);
+  return global;
+}
+
+std::vector<double> Problem::electrode_charges() const
+{
+  std::vector<double> local(electrodes.size(), 0.0), global(electrodes.size());
+  for (std::size_t e = 0; e < electrodes.size(); ++e)
+    if (auto it = model.electrode_charge.find(electrodes[e].name);
+        it != model.electrode_charge.end())
+      for (const auto& term : it->second)
+        local[e] += fem::assemble_scalar(*term);
+  MPI_Allreduce(local.data(), global.data(), global.size(), MPI_DOUBLE, MPI_SUM, comm);
+  return global;
+}
+
+std::vector<double> Problem::target_charges() const
+{
+  std::vector<double> out;
+  for (const auto& e : electrodes)
+    out.push_back(e.floating ? e.charge * e.history.factor(_t) : 0.0);
+  return out;
+}
+
+double Problem::update_contact_pressure()
+{
+  if (!contact_pressure)
+    return 0.0;
+  const auto load = assemble({model.contact_pressure_load});
+  const auto area = assemble({model.contact_nodal_area});
+  const std::int32_t owned = V_phi->dofmap()->index_map->size_local();
+  auto p = contact_pressure->x()->mutable_array();
+  double local = 0.0, global = 0.0;
+  for (std::int32_t i = 0; i < owned; ++i)
+  {
+    const double a = area.array()[phi_dofs[i]];
+    p[i] = a > 0.0 ? load.array()[phi_dofs[i]] / a : 0.0;
+    if (p[i] > 0.0)
+      local += a;
+  }
+  contact_pressure->x()->scatter_fwd();
+  MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_SUM, comm);
+  return global;
 }
 
 void Problem::scale_in_time(const std::shared_ptr<fem::Function<double>>& g,

@@ -30,6 +30,25 @@ struct ForceBalance
   double supported = 0.0;
 };
 
+/// A boundary with a prescribed or floating potential
+struct Electrode
+{
+  std::string name;
+  /// W-dofs of the potential on it (local, ghosts included)
+  std::vector<std::int32_t> dofs;
+  bool floating = false;
+  /// Floating: its Dirichlet values, the electrode's potential (uniform),
+  /// set by the solver; the charge on it: charge * history
+  std::shared_ptr<dolfinx::fem::Function<double>> potential;
+  double charge = 0.0;
+  History history;
+  /// Its Dirichlet condition (the reference engine leaves out the floating
+  /// ones: it constrains them its own way)
+  std::shared_ptr<const dolfinx::fem::DirichletBC<double>> bc;
+  /// Floating: the potential its condition holds now
+  double held = 0.0;
+};
+
 class Problem
 {
 public:
@@ -70,6 +89,36 @@ public:
   /// some vary in time; assembled once per time. Collective.
   double applied_load() const;
 
+  /// The potential of each electrode at x (its value at the electrode's
+  /// dofs, from the rank that owns the first), on every rank. Collective.
+  std::vector<double> electrode_potentials(std::span<const double> x) const;
+
+  /// Set the potential of each floating electrode to the value x has on it
+  /// (a step starts from x_{n-1}'s). Collective.
+  void hold_floating_potentials(std::span<const double> x);
+
+  /// Set the potential a floating electrode's condition holds
+  void hold(Electrode& e, double V);
+
+  /// The charge on each electrode by the reaction of the electric residual:
+  /// minus the sum of `r` over its dofs (owned entries of an unconstrained
+  /// residual), on every rank
+  std::vector<double> reaction_charges(std::span<const double> r) const;
+
+  /// The charge int D.nu ds on each electrode at the current x, on every rank
+  std::vector<double> electrode_charges() const;
+
+  /// The charge prescribed on each floating electrode at the current t
+  /// (0 for the others)
+  std::vector<double> target_charges() const;
+
+  /// The lumped contact pressure on V_phi (the ratio of the model's
+  /// contact_pressure_load and contact_nodal_area at each vertex of Gamma_C,
+  /// 0 elsewhere) at the current x, and the measure of Gamma_C where it is
+  /// positive (the contact length in 2D, area in 3D); 0 without the forms.
+  /// Collective.
+  double update_contact_pressure();
+
   /// A sum of linear forms on W, assembled (ghost contributions added to
   /// their owners)
   dolfinx::la::Vector<double> assemble(const FormList& terms) const;
@@ -91,8 +140,14 @@ public:
   std::vector<std::int32_t> bc_dofs; ///< W-dofs of every Dirichlet condition
   /// clamped boundary -> W-dofs of each of its u components
   std::map<std::string, std::vector<std::vector<std::int32_t>>> clamped_dofs;
+  /// Every boundary with a potential condition, by name
+  std::vector<Electrode> electrodes;
+  /// The lumped contact pressure (update_contact_pressure; null without a
+  /// contact boundary's forms)
+  std::shared_ptr<dolfinx::fem::Function<double>> contact_pressure;
 
 private:
+  double _t = 0.0;
   mutable double _applied_load = -1.0; ///< at the current t; < 0: not yet
   /// A datum scaled in time: where its values live, their value at
   /// factor 1, and its history
@@ -107,6 +162,9 @@ private:
   double load_sum() const;
   std::vector<std::shared_ptr<dolfinx::fem::Function<double>>> _scaled_bc_values;
   void create_bcs(const std::vector<DirichletSettings>& dirichlet, const std::string& source);
+  /// Throws ConfigError if a floating electrode shares a vertex with
+  /// another electrode (its potential would be two unknowns at once)
+  void check_electrodes_apart(const std::string& source) const;
   /// Scale the values of a Dirichlet function by a history at set_time
   void scale_in_time(const std::shared_ptr<dolfinx::fem::Function<double>>& g,
                      const History& history);

@@ -26,8 +26,10 @@ void timed(OperationStats& s, const std::string& task, F&& action)
 json fields_json(const std::map<std::string, FieldNorms>& norms, double FieldNorms::*member)
 {
   json out = json::object();
-  for (const char* f : {"u", "phi"})
+  for (const char* f : {"u", "phi", "charge"})
   {
+    if (std::string(f) == "charge" and !norms.contains(f))
+      continue; // only with floating electrodes
     if (!norms.contains(f))
     {
       out[f] = nullptr;
@@ -206,10 +208,19 @@ json Record::accept(StepState state, const SolveReport& report, const StateViews
   step["contact_force"] = contact_force(problem);
   const auto gap = _contact.max_normal_gap(problem, problem.model.constants.at("g")->value[0]);
   step["max_penetration"] = gap ? json(*gap) : json(nullptr);
+  const double in_contact = problem.update_contact_pressure();
+  if (problem.contact_pressure)
+    step[problem.dim() == 2 ? "contact_length" : "contact_area"] = in_contact;
+  // the unconstrained residual at x_n: reactions, balance, electrode charges
+  const auto residual = problem.assemble(problem.model.F);
+  const auto r = residual.array().subspan(
+      0, problem.W->dofmap()->index_map->size_local() * problem.W->dofmap()->index_map_bs());
   step["reactions"] = json::object();
-  for (const auto& [name, r] : report.reactions ? *report.reactions : problem.reactions())
-    step["reactions"][name] = r;
-  check_balance(step);
+  for (const auto& [name, f] : report.reactions ? *report.reactions : problem.reactions(r))
+    step["reactions"][name] = f;
+  if (!problem.electrodes.empty())
+    step["electrodes"] = electrodes_json(r, report.k);
+  check_balance(step, problem.force_balance(r));
   step["krylov_iterations"] = report.krylov_iterations;
   step["k"] = report.k;
   if (!problem.model.squared_errors.empty())
@@ -261,9 +272,9 @@ json Record::accept(StepState state, const SolveReport& report, const StateViews
 // matrix dwarfs the rest (a contact penalty 1e19 times the elastic
 // stiffness), it can pass while forces in newtons are left over. A step is
 // accepted only if the loads, the contact force and the reactions balance.
-void Record::check_balance(const json& step)
+void Record::check_balance(const json& step, const ForceBalance& balance)
 {
-  const double ratio = force_imbalance(_problem, _problem.force_balance(),
+  const double ratio = force_imbalance(_problem, balance,
                                        step["contact_force"].get<std::vector<double>>());
   if (ratio <= balance_tolerance)
     return;
@@ -276,6 +287,31 @@ void Record::check_balance(const json& step)
                 step["t"].get<double>(), ratio, balance_tolerance,
                 _problem.model.constants.at("c_p")->value[0]);
   fail(what);
+}
+
+// The current is the backward-Euler rate of the charge, from the last
+// recorded step's (the initial state, u = 0 and phi = 0, holds none)
+json Record::electrodes_json(std::span<const double> r, double k) const
+{
+  const auto& x = *_problem.x->x();
+  const auto potentials = _problem.electrode_potentials(
+      x.array().subspan(0, x.map()->size_local() * x.bs()));
+  const auto charges = _problem.electrode_charges();
+  const auto reaction = _problem.reaction_charges(r);
+  const json& steps = _summary["steps"];
+  json out = json::object();
+  for (std::size_t e = 0; e < _problem.electrodes.size(); ++e)
+  {
+    const std::string& name = _problem.electrodes[e].name;
+    double before = 0.0;
+    if (!steps.empty() and steps.back().contains("electrodes"))
+      before = steps.back()["electrodes"][name]["charge"].get<double>();
+    out[name] = {{"potential", potentials[e]},
+                 {"charge", charges[e]},
+                 {"reaction_charge", reaction[e]},
+                 {"current", (charges[e] - before) / k}};
+  }
+  return out;
 }
 
 void Record::reject(const SolveReport& report, const std::string& action)

@@ -102,7 +102,10 @@ private:
   void write_summary();
   [[noreturn]] void fail_on_output(const OutputError& e);
   /// fail() unless the step's forces balance to balance_tolerance
-  void check_balance(const json& step);
+  void check_balance(const json& step, const ForceBalance& balance);
+  /// Potential, charge (int D.nu and by reaction, from the unconstrained
+  /// residual r: owned entries) and current of each electrode
+  json electrodes_json(std::span<const double> r, double k) const;
   StepState write_checkpoint(StepState state, const StateViews& states);
 
   Problem& _problem;

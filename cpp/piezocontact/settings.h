@@ -45,6 +45,11 @@ struct DirichletSettings
   std::optional<double> potential;
   bool potential_exact = false;
   History displacement_history, potential_history;
+  /// a floating electrode: phi is one unknown on the boundary, uniform,
+  /// and the charge int D.nu ds on it is `charge` (times its history)
+  bool floating = false;
+  double charge = 0.0;
+  History charge_history;
 };
 
 struct NewtonSettings

@@ -154,7 +154,8 @@ json run(Problem& problem, const RunSettings& settings, const std::filesystem::p
   int signal = 0;
   double imbalance = 0.0; // force_imbalance at the last iterate
   newton.set_convergence_check(
-      [&monitor, &problem, &signal, &system, &imbalance](const nls::petsc::NewtonSolver&,
+      [&monitor, &problem, &signal, &system, &imbalance,
+       monitor_rtol = settings.newton.rtol](const nls::petsc::NewtonSolver&,
                                                          const Vec r)
       {
         PetscInt n;
@@ -162,7 +163,14 @@ json run(Problem& problem, const RunSettings& settings, const std::filesystem::p
         const PetscScalar* ra;
         VecGetArrayRead(r, &ra);
         const std::span<const double> residual(ra, n);
-        const bool ok = monitor.check(problem.x->x()->array().subspan(0, n), residual);
+        bool ok = monitor.check(problem.x->x()->array().subspan(0, n), residual);
+        if (!system.floating.empty()) // the floating electrodes' charge equations
+        {
+          const double relative = system.floating.relative_residual();
+          monitor.history.back()["charge"]
+              = {system.floating.residual_norm(), relative, relative};
+          ok = ok and relative <= monitor_rtol;
+        }
         // The scaled test alone can pass with newtons left over where one
         // block dwarfs the rest (a huge contact penalty): balance them too
         imbalance = force_imbalance(problem, system.balance, contact_force(problem));
@@ -173,6 +181,9 @@ json run(Problem& problem, const RunSettings& settings, const std::filesystem::p
         return std::pair<double, bool>(norm, (ok and imbalance <= balance_tolerance)
                                                  or signal != 0);
       });
+  // x <- x - dx, and the floating potentials with it (floating.h)
+  newton.set_update([&system](const nls::petsc::NewtonSolver&, const Vec dx, Vec x)
+                    { system.floating.update(dx, x); });
   newton.max_it = settings.newton.max_iterations;
   newton.report = false;
   newton.error_on_nonconvergence = false;
@@ -232,6 +243,7 @@ json run(Problem& problem, const RunSettings& settings, const std::filesystem::p
     // Predictor u^0 = u_{n-1} + k du_{n-1}, phi^0 = phi_{n-1}; then the BCs
     for (auto d : problem.u_dofs)
       xa[d] = xp[d] + k / steps.k_last * (xp[d] - x_prev2[d]);
+    problem.hold_floating_potentials(xp); // phi^0 = phi_{n-1} there too
     for (const auto& bc : problem.bcs)
       bc->set(xa);
     problem.x->x()->scatter_fwd();
@@ -267,9 +279,12 @@ json run(Problem& problem, const RunSettings& settings, const std::filesystem::p
       char what[512];
       std::snprintf(what, sizeof(what),
                     "Newton did not converge at t = %g (k = %g) in %d iterations: "
-                    "relative residuals u = %s, phi = %s%s",
+                    "relative residuals u = %s, phi = %s%s%s",
                     t, k, its, sci(last.at("u").relative).c_str(),
                     sci(last.at("phi").relative).c_str(),
+                    last.contains("charge")
+                        ? (", floating charges = " + sci(last.at("charge").relative)).c_str()
+                        : "",
                     imbalance <= balance_tolerance
                         ? ""
                         : (", forces unbalanced by " + sci(imbalance)

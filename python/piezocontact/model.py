@@ -178,6 +178,15 @@ class JitModel:
         self.F_terms, self.J_terms, self.J_state, self.L_terms = (
             [fem.form(f) for f in forms] for forms in (F, J, J_state, L))
         self.contact_force = [fem.form(pf.contact_force(x, ds_c, data, i, law)) for i in range(d)]
+        self.contact_pressure = [fem.form(f) for f in
+                                 pf.contact_pressure_moments(x, y, ds_c, data, law)]
+        # every boundary with a potential condition is an electrode: its
+        # charge, one term per region it bounds
+        self.electrode_charge = {
+            b: [fem.form(pf.electrode_charge(x, ds_on(named.boundary_facets_of(b, region)), mat))
+                for region, mat in self.materials.items()]
+            for b, bc in cfg["boundaries"].items()
+            if ("potential" in bc or "floating" in bc) and b in named.tag_of}
         self._whole(cfg, manufactured, law, extra_residual)
 
         self.exact, self.squared_errors = None, {}
@@ -239,6 +248,8 @@ class JitModel:
             m.u_exact, m.phi_exact = (e._cpp_object for e in self.exact)
         m.squared_errors = self.squared_errors
         m.boundary_measures = self.boundary_measures
+        m.contact_pressure_load, m.contact_nodal_area = self.contact_pressure
+        m.electrode_charge = self.electrode_charge
         return m
 
 
