@@ -24,8 +24,60 @@ FieldwiseConvergence::FieldwiseConvergence(
   }
 }
 
+namespace
+{
+/// Replace the values of an AIJ matrix by their absolute values; false for
+/// another type (then no coupling floor: the test is r_f <= rtol s_f + ...)
+bool absolute_values(Mat M)
+{
+  PetscBool mpi, seq;
+  PetscObjectTypeCompare((PetscObject)M, MATMPIAIJ, &mpi);
+  PetscObjectTypeCompare((PetscObject)M, MATSEQAIJ, &seq);
+  std::vector<Mat> blocks;
+  if (mpi)
+  {
+    Mat Ad, Ao;
+    const PetscInt* colmap;
+    MatMPIAIJGetSeqAIJ(M, &Ad, &Ao, &colmap);
+    blocks = {Ad, Ao};
+  }
+  else if (seq)
+    blocks = {M};
+  else
+    return false;
+  for (Mat B : blocks)
+  {
+    PetscInt rows;
+    MatGetLocalSize(B, &rows, nullptr);
+    const PetscInt *ia, *ja;
+    PetscInt n;
+    PetscBool done;
+    MatGetRowIJ(B, 0, PETSC_FALSE, PETSC_FALSE, &n, &ia, &ja, &done);
+    PetscScalar* values;
+    MatSeqAIJGetArray(B, &values);
+    for (PetscInt k = 0; done and k < ia[n]; ++k)
+      values[k] = std::abs(values[k]);
+    MatSeqAIJRestoreArray(B, &values);
+    MatRestoreRowIJ(B, 0, PETSC_FALSE, PETSC_FALSE, &n, &ia, &ja, &done);
+  }
+  return true;
+}
+} // namespace
+
 void FieldwiseConvergence::set_scaling(Mat A)
 {
+  Mat copy;
+  MatDuplicate(A, MAT_COPY_VALUES, &copy);
+  _abs_A = std::make_unique<dolfinx::la::petsc::Matrix>(copy, false);
+  if (!absolute_values(copy))
+    _abs_A.reset();
+  else if (!_in)
+  {
+    Vec in, out;
+    MatCreateVecs(A, &in, &out);
+    _in = std::make_unique<dolfinx::la::petsc::Vector>(in, false);
+    _out = std::make_unique<dolfinx::la::petsc::Vector>(out, false);
+  }
   Vec v;
   MatCreateVecs(A, nullptr, &v);
   const dolfinx::la::petsc::Vector diagonal(v, false); // destroys v
@@ -41,9 +93,44 @@ void FieldwiseConvergence::set_scaling(Mat A)
   VecRestoreArrayRead(d, &a);
 }
 
+// sum_j |J_ij x_j| over the columns j of other fields than row i's: |J|
+// times |x| restricted to each field in turn
+std::vector<double> FieldwiseConvergence::coupling(std::span<const double> x) const
+{
+  std::vector<double> local(_dofs.size(), 0.0), global(_dofs.size(), 0.0);
+  if (!_abs_A)
+    return global;
+  for (const auto& [from, from_dofs] : _dofs)
+  {
+    VecSet(_in->vec(), 0.0);
+    PetscScalar* a;
+    VecGetArray(_in->vec(), &a);
+    for (auto i : from_dofs)
+      a[i] = std::abs(x[i]);
+    VecRestoreArray(_in->vec(), &a);
+    MatMult(_abs_A->mat(), _in->vec(), _out->vec());
+    const PetscScalar* y;
+    VecGetArrayRead(_out->vec(), &y);
+    std::size_t f = 0;
+    for (const auto& [to, to_dofs] : _dofs)
+    {
+      if (to != from)
+        for (auto i : to_dofs)
+          local[f] += (y[i] / _sqrt_d[i]) * (y[i] / _sqrt_d[i]);
+      ++f;
+    }
+    VecRestoreArrayRead(_out->vec(), &y);
+  }
+  MPI_Allreduce(local.data(), global.data(), global.size(), MPI_DOUBLE, MPI_SUM, _comm);
+  for (double& c : global)
+    c = std::sqrt(c);
+  return global;
+}
+
 bool FieldwiseConvergence::check(std::span<const double> x,
                                  std::span<const double> b)
 {
+  const std::vector<double> coupled = coupling(x);
   // per field: ||F||^2, ||D^-1/2 F||^2, ||D^1/2 x||^2; fields in name order
   // ("phi", "u"), the sums are order-independent
   std::vector<double> sums;
@@ -69,13 +156,14 @@ bool FieldwiseConvergence::check(std::span<const double> x,
   {
     const double si = std::sqrt(global[3 * f]), r = std::sqrt(global[3 * f + 1]),
                  s = std::sqrt(global[3 * f + 2]);
-    const double rel = s > 0 ? r / s
-                             : (r == 0 ? 0.0 : std::numeric_limits<double>::quiet_NaN());
+    const double scale = s + coupled[f]; // what the test measures r_f against
+    const double rel = scale > 0 ? r / scale
+                                 : (r == 0 ? 0.0 : std::numeric_limits<double>::quiet_NaN());
     entry[name] = {si, r, rel};
     // The floor is this field's own scale at the solve's first iterate
     if (first)
       _s_start[name] = s;
-    ok = ok and r <= _rtol * s + _atol * _s_start[name];
+    ok = ok and r <= _rtol * (s + coupled[f]) + _atol * _s_start[name];
     ++f;
   }
   history.push_back(entry);

@@ -7,8 +7,13 @@
 // Jacobi-scaled system D^-1/2 J D^-1/2 (D^1/2 x) = D^-1/2 F, D = |diag J|,
 // where both blocks are O(1). Per field f:
 //   r_f = ||D^-1/2 F||_f,  s_f = ||D^1/2 x||_f,
-// converged when r_f <= rtol s_f + atol s_f^0 for every f, s_f^0 = s_f at the
-// solve's first iterate (the predictor). Each field in its own scale: a floor
+// converged when r_f <= rtol (s_f + c_f) + atol s_f^0 for every f, s_f^0 =
+// s_f at the solve's first iterate (the predictor), c_f
+// the norm of D^-1/2 (sum_j |J_ij x_j|) over f's rows i and the columns j of
+// the other fields: the size of the terms they put into f's equations, the
+// scale of its round-off where the field itself is zero (a short-circuited
+// piezoelectric: phi = 0 exactly, its residual the round-off of the
+// cancelling e eps(u) of neighbouring cells). An unsolved f leaves r_f ~ c_f. Each field in its own scale: a floor
 // from the other field's (a huge contact penalty inflates s_u) would accept
 // a phi that was never solved for. The time loop also requires the forces to
 // balance (diagnostics.h). Where coupling terms dwarf a field's diagonal
@@ -19,7 +24,9 @@
 // free dof weighs ~1e-4.
 #pragma once
 
+#include <dolfinx/la/petsc.h>
 #include <map>
+#include <memory>
 #include <mpi.h>
 #include <petscmat.h>
 #include <span>
@@ -32,7 +39,7 @@ struct FieldNorms
 {
   double residual;        ///< ||F_f||_2 in SI units
   double scaled_residual; ///< r_f
-  double relative;        ///< r_f / s_f; NaN (null in JSON) while s_f = 0 < r_f
+  double relative;        ///< r_f / (s_f + c_f); NaN (null in JSON) while both are 0 < r_f
 };
 
 class FieldwiseConvergence
@@ -45,7 +52,7 @@ public:
                        std::int32_t num_owned, double rtol, double atol,
                        MPI_Comm comm);
 
-  /// Take D = |diag J| from an assembled Jacobian
+  /// Take D = |diag J| and |J| from an assembled Jacobian
   void set_scaling(Mat A);
 
   /// Record one iterate (owned parts of x and F); true when converged. A
@@ -56,6 +63,12 @@ public:
   std::vector<std::map<std::string, FieldNorms>> history;
 
 private:
+  /// c_f of each field (in _dofs order) at x (owned entries), by J as last
+  /// set_scaling
+  std::vector<double> coupling(std::span<const double> x) const;
+  /// |J| entry by entry (null if J is not an AIJ matrix: no c_f then)
+  std::unique_ptr<dolfinx::la::petsc::Matrix> _abs_A;
+  std::unique_ptr<dolfinx::la::petsc::Vector> _in, _out;
   std::map<std::string, std::vector<std::int32_t>> _dofs;
   std::vector<double> _sqrt_d;
   double _rtol, _atol;

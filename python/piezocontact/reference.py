@@ -24,14 +24,22 @@ INCREMENT_RTOL = 1e-11
 
 class _Newton:
     """SNES on F(x) = 0 with the Dirichlet conditions, as dolfinx's
-    NonlinearProblem assembles it (lifting, then the BC rows)."""
+    NonlinearProblem assembles it (lifting, then the BC rows); floating
+    electrodes by a multi-point constraint (floating_mpc.py)."""
 
     def __init__(self, model, problem, settings, comm):
         self.x, self.bcs, self.problem = model.x, problem.bcs, problem
         self.F_form, self.J_form = model.F_whole, model.J_whole
         self.fields = {"u": np.asarray(problem.u_dofs), "phi": np.asarray(problem.phi_dofs)}
-        self.b = fem.petsc.create_vector(self.F_form)
-        self.A = fem.petsc.create_matrix(self.J_form)
+        self.floating = None
+        if any(e.floating for e in problem.electrodes):
+            from .floating_mpc import FloatingConstraint
+            self.floating = FloatingConstraint(self.x, problem, self.F_form, self.J_form)
+            self.bcs = self.floating.bcs
+            self.b, self.A = self.floating.create_vector(), self.floating.create_matrix()
+        else:
+            self.b = fem.petsc.create_vector(self.F_form)
+            self.A = fem.petsc.create_matrix(self.J_form)
         self.snes = PETSc.SNES().create(comm)
         self.snes.setFunction(self._F, self.b)
         self.snes.setJacobian(self._J, self.A)
@@ -52,23 +60,31 @@ class _Newton:
 
     def _F(self, snes, x, F):
         t0 = time.perf_counter()
-        x.ghostUpdate(PETSc.InsertMode.INSERT, PETSc.ScatterMode.FORWARD)
-        x.copy(self.x.vector)
-        self.x.vector.ghostUpdate(PETSc.InsertMode.INSERT, PETSc.ScatterMode.FORWARD)
-        with F.localForm() as f:
-            f.set(0.0)
-        fem.petsc.assemble_vector(F, self.F_form)
-        fem.petsc.apply_lifting(F, [self.J_form], bcs=[self.bcs], x0=[x], scale=-1.0)
-        F.ghostUpdate(PETSc.InsertMode.ADD, PETSc.ScatterMode.REVERSE)
+        if self.floating:
+            self.floating.take(x)
+            self.floating.residual(F)
+        else:
+            x.ghostUpdate(PETSc.InsertMode.INSERT, PETSc.ScatterMode.FORWARD)
+            x.copy(self.x.vector)
+            self.x.vector.ghostUpdate(PETSc.InsertMode.INSERT, PETSc.ScatterMode.FORWARD)
+            with F.localForm() as f:
+                f.set(0.0)
+            fem.petsc.assemble_vector(F, self.F_form)
+            fem.petsc.apply_lifting(F, [self.J_form], bcs=[self.bcs], x0=[x], scale=-1.0)
+            F.ghostUpdate(PETSc.InsertMode.ADD, PETSc.ScatterMode.REVERSE)
         self.balance = self.problem.force_balance(F.getArray(readonly=True))
-        fem.petsc.set_bc(F, self.bcs, x, -1.0)
+        fem.petsc.set_bc(F, self.bcs, self.x.vector, -1.0)
         self.assembly_s += time.perf_counter() - t0
 
     def _J(self, snes, x, A, P):
         t0 = time.perf_counter()
-        A.zeroEntries()
-        fem.petsc.assemble_matrix(A, self.J_form, bcs=self.bcs)
-        A.assemble()
+        if self.floating:
+            self.floating.take(x)
+            self.floating.jacobian(A)
+        else:
+            A.zeroEntries()
+            fem.petsc.assemble_matrix(A, self.J_form, bcs=self.bcs)
+            A.assemble()
         self.assembly_s += time.perf_counter() - t0
 
     def _norms(self, v):
@@ -87,7 +103,9 @@ class _Newton:
         if it == 0:
             self.history = [{f: (F_norms[f], None) for f in F_norms}]
             return 0
-        dx, x = self._norms(snes.getSolutionUpdate()), self._norms(snes.getSolution())
+        # x as assembled (with floating electrodes, the solver's own vector
+        # keeps stale entries at constrained dofs)
+        dx, x = self._norms(snes.getSolutionUpdate()), self._norms(self.x.vector)
         relative = {f: dx[f] / x[f] if x[f] > 0 else 0.0 for f in dx}
         self.history.append({f: (F_norms[f], relative[f]) for f in F_norms})
         # Small increments are not enough where the penalty makes J
@@ -105,10 +123,16 @@ class _Newton:
 
     def solve(self):
         """Newton from the current x; (iterations, converged)."""
-        x = self.x.vector.copy()
-        self.snes.solve(None, x)
-        x.copy(self.x.vector)
-        self.x.x.scatter_forward()
+        if self.floating:
+            x = self.floating.create_vector()
+            self.x.vector.copy(x)  # the owned layouts agree
+            self.snes.solve(None, x)
+            self.floating.take(x)
+        else:
+            x = self.x.vector.copy()
+            self.snes.solve(None, x)
+            x.copy(self.x.vector)
+            self.x.x.scatter_forward()
         return self.snes.getIterationNumber(), self.snes.getConvergedReason() > 0
 
 
@@ -173,7 +197,7 @@ def run(model, problem, settings, output, summary, progress, observer=None):
         t = n * k
         problem.set_time(t, k)
         x[:] = x_prev
-        fem.petsc.set_bc(model.x.vector, problem.bcs)
+        fem.petsc.set_bc(model.x.vector, newton.bcs)
         model.x.x.scatter_forward()
         t0 = time.perf_counter()
         its, converged = newton.solve()
