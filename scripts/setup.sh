@@ -9,6 +9,8 @@ PACKAGES=(
   # FEniCSx 0.5 stack: dolfinx C++ and Python, ffcx, UFL, basix, PETSc
   libdolfinx-dev python3-dolfinx python3-ffcx python3-ufl python3-basix
   python3-petsc4py python3-mpi4py python3-numpy
+  # the reference engine's floating electrodes (multi-point constraints)
+  python3-dolfinx-mpc
   # meshes: gmsh and its Python API (example 2)
   python3-gmsh
   # build: compilers, CMake, pkg-config (PETSc), JSON for the C++ config
