@@ -134,6 +134,18 @@ CASES = {
         MMS, ["boundaries.top.potential=3"],
         "boundaries.top.potential = 3.0: with a manufactured solution the Dirichlet data "
         "are the exact solution's: use \"exact\""),
+    "a floating electrode with a potential": (
+        SQUARE, ['boundaries.right={"floating":{},"potential":1}'],
+        "boundaries.right: floating and potential are exclusive"),
+    "a floating electrode with nothing grounded": (
+        SQUARE, ['boundaries.left={"displacement":[0,0]}', 'boundaries.right={"floating":{}}'],
+        "boundaries.right.floating: no boundary has a prescribed potential"),
+    "a floating electrode touching another electrode": (
+        SQUARE, ['boundaries.top={"floating":{"charge":1e-9}}'],
+        "boundaries.top.floating: the electrode shares a vertex with the electrode left"),
+    "a floating charge that is not a number": (
+        SQUARE, ['boundaries.right={"floating":{"charge":"1e-9"}}'],
+        "boundaries.right.floating.charge = \"1e-9\": expected a number"),
 }
 
 

@@ -291,8 +291,8 @@ def test_3d_regions_under_mpi_resume_and_xdmf(tmp_path):
     """The 3D two-region unimorph (its .msh converted once, on rank 0):
     mpirun -n 2 gives the serial answers (1e-8); a run to T/2 extended to T
     on resume equals the straight run (1e-8: the checkpoint holds u_x, u_y,
-    u_z, phi per vertex); the XDMF steps hold u, phi, D and the six stress
-    components."""
+    u_z, phi per vertex); the XDMF steps hold u, phi, D, the contact
+    pressure and the six stress components."""
     from test_interrupts import resume
     from test_robustness import xdmf_times
     base = ["time.steps=4", "time.T=0.2"]
@@ -310,6 +310,7 @@ def test_3d_regions_under_mpi_resume_and_xdmf(tmp_path):
     for x, y in zip(step_values(serial), step_values(extended)):
         for qa, qb in zip(x, y):
             assert relative(qb, qa) < 1e-8
-    fields = {"u", "phi", "D"} | {f"stress_{c}" for c in ("xx", "yy", "zz", "yz", "xz", "xy")}
+    fields = {"u", "phi", "D", "contact_pressure"} | {f"stress_{c}" for c in
+                                                      ("xx", "yy", "zz", "yz", "xz", "xy")}
     assert {name: len(t) for name, t in xdmf_times(tmp_path / "serial" / "solution.xdmf").items()} \
         == {name: 4 for name in fields}

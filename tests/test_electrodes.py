@@ -208,3 +208,19 @@ def test_contact_pressure_of_a_uniform_compression(tmp_path):
     bottom = np.abs(nodal[:, 1]) < 1e-12
     assert np.allclose(nodal[bottom, 2], SIGMA0, rtol=1e-10, atol=0)
     assert np.all(nodal[~bottom, 2] == 0.0)
+
+
+def test_a_resumed_run_continues_the_floating_electrode(tmp_path):
+    """The floating bilayer run to T/2 and resumed to T equals the straight
+    run (1e-8): the floating potential restarts from the checkpoint's, the
+    current from the last recorded charge."""
+    from test_interrupts import resume
+    config = floating_bilayer(tmp_path)
+    straight = run_solver("cpp", tmp_path / "straight", ["time.steps=4"] + QUIET, config=config)[0]
+    run_solver("cpp", tmp_path / "short", ["time.steps=2", "time.T=0.5"] + QUIET, config=config)
+    extended, _ = resume("cpp", tmp_path / "short", overrides=["time.T=1.0", "time.steps=4"])
+    for x, y in zip(electrode_values(straight), electrode_values(extended)):
+        assert relative(y, x) < 1e-8
+    currents = [[e["current"] for _, e in sorted(s["electrodes"].items())]
+                for s in (straight["steps"][2], extended["steps"][2])]
+    assert relative(currents[1], currents[0]) < 1e-8

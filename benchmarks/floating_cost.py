@@ -1,0 +1,108 @@
+#!/usr/bin/python3
+"""What a floating electrode costs per step: example 1 with its right side an
+electrode, prescribed (20 V) or floating (its charge the one the prescribed
+run ends with, so that both runs solve problems of the same size), at
+k = h = 1/n, T = 1, outputs off but summary and checkpoints. A floating
+electrode adds one back-substitution per factorisation (its unit response)
+and a few dot products per Newton iteration (cpp/piezocontact/floating.h).
+
+    /usr/bin/python3 benchmarks/floating_cost.py                   # prints markdown
+    /usr/bin/python3 benchmarks/floating_cost.py --sizes 64 128 --write docs/benchmarks.md
+
+Each run is repeated --repeat times and the fastest kept.
+"""
+
+import argparse
+import json
+import os
+import platform
+import subprocess
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+SQUARE = ROOT / "demos" / "square.json"
+HEADING = "## Cost of a floating electrode"
+
+
+def run(build, cfg, n):
+    """Wall time (s) and summary of one run of the executable."""
+    with tempfile.TemporaryDirectory(dir=os.environ.get("PIEZO_BENCH_DIR")) as out:
+        config = Path(out) / "config.json"
+        config.write_text(json.dumps(cfg))
+        args = [str(Path(build) / "piezo-contact"), "--config", str(config), "--output",
+                str(Path(out) / "run"), "--quiet"]
+        for o in (f"mesh.n={n}", f"time.steps={n}", "output.nodal=none", "output.xdmf=false"):
+            args += ["--set", o]
+        t0 = time.perf_counter()
+        subprocess.run(args, check=True, capture_output=True)
+        wall = time.perf_counter() - t0
+        return wall, json.loads((Path(out) / "run" / "summary.json").read_text())
+
+
+def fastest(build, cfg, n, repeat):
+    return min((run(build, cfg, n) for _ in range(repeat)), key=lambda r: r[0])
+
+
+def row(n, kind, wall, summary):
+    steps = summary["steps"]
+    ops = summary["timing"]["operations"]
+    its = sum(s["newton_iterations"] for s in steps)
+    right = steps[-1]["electrodes"]["right"]
+    return (f"| {n} | {kind} | {summary['dofs']} | {wall:.2f} | "
+            f"{1e3 * summary['timing']['total_s'] / len(steps):.1f} | {its} | "
+            f"{ops['factorisation']['count']} | {1e3 * ops['triangular_solve']['seconds'] / len(steps):.2f} | "
+            f"{right['potential']:.6g} | {right['reaction_charge']:.4e} |")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--sizes", type=int, nargs="+", default=[128])
+    ap.add_argument("--build", default=str(ROOT / "build"))
+    ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--write", help="(re)place the report's section in this markdown file")
+    args = ap.parse_args()
+    t0 = time.perf_counter()
+    lines = [f"{HEADING}\n",
+             f"Regenerate: `/usr/bin/python3 benchmarks/floating_cost.py --sizes "
+             f"{' '.join(map(str, args.sizes))} --write docs/benchmarks.md` (this run: "
+             f"{platform.node()}, {os.cpu_count()} cores, {time.strftime('%Y-%m-%d')}).\n",
+             "Example 1 with `right` an electrode, k = h = 1/n, T = 1, XDMF and nodal "
+             f"files off; fastest of {args.repeat} runs. *per step*: the run's own "
+             "`timing.total_s` / steps; *solves*: the triangular solves' time per step "
+             "(the floating electrode's unit responses are among them); the last "
+             "columns: the right electrode at t = 1.\n",
+             "| n | right electrode | dofs | wall (s) | per step (ms) | Newton its | "
+             "factorisations | solves per step (ms) | potential (V) | reaction charge (C/m) |",
+             "|---|---|---|---|---|---|---|---|---|---|"]
+    print("\n".join(lines), flush=True)
+    base = json.loads(SQUARE.read_text())
+    for n in args.sizes:
+        prescribed = json.loads(json.dumps(base))
+        prescribed["boundaries"]["right"] = {"potential": 20.0}
+        wall, summary = fastest(args.build, prescribed, n, args.repeat)
+        lines.append(row(n, "prescribed 20 V", wall, summary))
+        print(lines[-1], flush=True)
+        floating = json.loads(json.dumps(base))
+        charge = summary["steps"][-1]["electrodes"]["right"]["reaction_charge"]
+        floating["boundaries"]["right"] = {"floating": {"charge": charge}}
+        wall, summary = fastest(args.build, floating, n, args.repeat)
+        lines.append(row(n, "floating, that charge", wall, summary))
+        print(lines[-1], flush=True)
+    lines.append(f"\n(benchmark wall time {time.perf_counter() - t0:.0f} s)")
+    if args.write:
+        path = Path(args.write)
+        text = path.read_text() if path.exists() else ""
+        section = "\n".join(lines) + "\n"
+        start = text.find(HEADING)
+        if start < 0:
+            text = text.rstrip("\n") + "\n\n" + section
+        else:
+            end = text.find("\n## ", start + 1)
+            text = text[:start] + section + (text[end + 1:] if end >= 0 else "")
+        path.write_text(text)
+
+
+if __name__ == "__main__":
+    main()
