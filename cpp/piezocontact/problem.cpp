@@ -48,7 +48,10 @@ Problem::Problem(Model model_, const std::vector<DirichletSettings>& dirichlet,
   }
   create_bcs(dirichlet, source);
   check_electrodes_apart(source);
-  if (model.contact_pressure_load and model.contact_nodal_area)
+  // the pressure field, where there is a contact boundary
+  std::int64_t contact_facets = model.contact_facets.size();
+  MPI_Allreduce(MPI_IN_PLACE, &contact_facets, 1, MPI_INT64_T, MPI_SUM, comm);
+  if (model.contact_pressure_load and model.contact_nodal_area and contact_facets > 0)
   {
     contact_pressure = std::make_shared<fem::Function<double>>(V_phi);
     contact_pressure->name = "contact_pressure";
