@@ -46,7 +46,9 @@ CASE_TIMEOUT = 120  # s; a hang is a finding
 
 CHEAP = {"square.json": {"mesh": {"n": 3}}, "manufactured.json": {"mesh": {"n": 3}},
          "contactor.json": {"mesh": {"size": 0.5}}, "slab.json": {"mesh": {"n": [2, 2, 1]}},
-         "manufactured_3d.json": {"mesh": {"n": [1, 1, 1]}}, "bilayer.json": {"mesh": {}}}
+         "manufactured_3d.json": {"mesh": {"n": [1, 1, 1]}}, "bilayer.json": {"mesh": {}},
+         # a floating electrode and a load history
+         "sensor.json": {"mesh": {"size": 0.5}}}
 EXTREMES = [0, -1, 1, 0.5, 1e308, -1e308, 5e-324, 1e-300, 2 ** 31 - 1, 2 ** 31, -2 ** 31 - 1,
             2 ** 63, 2 ** 64, 10 ** 30, "", "x", "\u0000", "\u00e9", True, False, None, [], {},
             [[]], [1e308, 1e308], [0.0, 0.0, 0.0], {"bogus": 1}]

@@ -20,7 +20,7 @@ from conftest import ENV, ROOT, SQUARE, command, run_solver
 VARIANT = ROOT / "demos" / "contactor_in_contact.json"
 # Example 1 at n = 32: a few ms per step, so that kills land in every phase
 KILLED = ["mesh.n=32", "time.steps=2000", "output.nodal=all"]
-FIELDS = {"u", "phi", "D", "stress_xx", "stress_yy", "stress_xy"}
+FIELDS = {"u", "phi", "contact_pressure", "D", "stress_xx", "stress_yy", "stress_xy"}
 
 
 def start(solver, out, overrides, config=SQUARE, np_=1):
@@ -106,7 +106,7 @@ def check_outputs(out, status="running"):
         assert f["/Mesh/mesh/geometry"].shape[0] > 0
     if s["config"]["output"]["nodal"] == "all":
         for i in range(1, n + 1):
-            for name in ("u", "phi"):
+            for name in ("u", "phi", "contact_pressure"):
                 assert np.isfinite(np.load(out / "nodal" / f"{name}_{i:04d}.npy")).all()
     return n
 
@@ -186,7 +186,7 @@ def test_resume_after_kill_reproduces_the_run(solver, tmp_path):
     assert resumed["status"] == "completed"
     assert_same_run(full, resumed, REL[solver])
     for i in range(1, 151):
-        for name in ("u", "phi"):
+        for name in ("u", "phi", "contact_pressure"):
             a = np.load(tmp_path / "full" / "nodal" / f"{name}_{i:04d}.npy")
             b = np.load(part / "nodal" / f"{name}_{i:04d}.npy")
             np.testing.assert_allclose(b, a, rtol=REL[solver], atol=0)
@@ -247,7 +247,7 @@ def test_resume_extends_a_run_to_a_later_time(solver, tmp_path):
     assert sorted(p.name for p in (short / "solution").iterdir()) == \
         [f"step_{i:06d}.h5" for i in (1, 2, 3)]
     assert [p.name for p in (short / "checkpoint").iterdir()] == ["state_000003.npy"]
-    assert len(list((short / "nodal").iterdir())) == 6
+    assert len(list((short / "nodal").iterdir())) == 9  # u, phi, contact_pressure
     assert check_outputs(short, status="completed") == 3
 
 

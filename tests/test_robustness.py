@@ -55,6 +55,7 @@ def test_newton_failure_stops_cleanly_keeping_what_was_computed(solver, tmp_path
     assert s["status"] == "failed" and s["error"] in message
     assert len(s["steps"]) == 1 and s["events"][-1]["action"] == "stop"
     assert {name: len(t) for name, t in xdmf_times(tmp_path / "solution.xdmf").items()} == \
-        {"u": 1, "phi": 1, "D": 1, "stress_xx": 1, "stress_yy": 1, "stress_xy": 1}
+        {"u": 1, "phi": 1, "contact_pressure": 1, "D": 1, "stress_xx": 1, "stress_yy": 1,
+         "stress_xy": 1}
 
 

@@ -7,13 +7,16 @@
 // Jacobi-scaled system D^-1/2 J D^-1/2 (D^1/2 x) = D^-1/2 F, D = |diag J|,
 // where both blocks are O(1). Per field f:
 //   r_f = ||D^-1/2 F||_f,  s_f = ||D^1/2 x||_f,
-// converged when r_f <= rtol (s_f + c_f) + atol s_f^0 for every f, s_f^0 =
-// s_f at the solve's first iterate (the predictor), c_f
-// the norm of D^-1/2 (sum_j |J_ij x_j|) over f's rows i and the columns j of
-// the other fields: the size of the terms they put into f's equations, the
-// scale of its round-off where the field itself is zero (a short-circuited
-// piezoelectric: phi = 0 exactly, its residual the round-off of the
-// cancelling e eps(u) of neighbouring cells). An unsolved f leaves r_f ~ c_f. Each field in its own scale: a floor
+// converged when r_f <= rtol s_f + atol s_f^0 for every f, s_f^0 = s_f at
+// the solve's first iterate (the predictor). A field that is zero (phi in a
+// short-circuited piezoelectric) has s_f at round-off and its residual is
+// the round-off of terms that cancel (e eps(u) of neighbouring cells): no
+// rtol s_f can be met. Where s_f <= 1000 eps c_f, c_f the norm of
+// D^-1/2 sum_j |J_ij x_j| over f's rows i and the other fields' columns j
+// (the size of what they put into f's equations), the field is taken as
+// zero and r_f <= 1000 eps c_f accepted. A field that is not zero has s_f
+// of the order of c_f (at D = 0, beta grad phi balances e eps), so the
+// gate never opens for it. Each field in its own scale: a floor
 // from the other field's (a huge contact penalty inflates s_u) would accept
 // a phi that was never solved for. The time loop also requires the forces to
 // balance (diagnostics.h). Where coupling terms dwarf a field's diagonal
@@ -39,7 +42,7 @@ struct FieldNorms
 {
   double residual;        ///< ||F_f||_2 in SI units
   double scaled_residual; ///< r_f
-  double relative;        ///< r_f / (s_f + c_f); NaN (null in JSON) while both are 0 < r_f
+  double relative;        ///< r_f / s_f (r_f / c_f for a zero field); NaN (null in JSON) if 0 < r_f
 };
 
 class FieldwiseConvergence

@@ -39,8 +39,13 @@ std::vector<double> solve_dense(std::vector<double> M, std::vector<double> b)
     for (std::size_t i = k + 1; i < n; ++i)
       if (std::abs(M[i * n + k]) > std::abs(M[pivot * n + k]))
         pivot = i;
-    if (M[pivot * n + k] == 0.0)
-      throw std::runtime_error("the floating electrodes' capacitance matrix is singular");
+    double largest = 0.0;
+    for (double m : M)
+      largest = std::max(largest, std::abs(m));
+    if (!(std::abs(M[pivot * n + k]) > 1e-13 * largest))
+      throw std::runtime_error(
+          "the floating electrodes' capacitances are singular: is an electrode, or a part of "
+          "the body, insulated from every prescribed potential?");
     for (std::size_t j = 0; j < n; ++j)
       std::swap(M[k * n + j], M[pivot * n + j]);
     std::swap(b[k], b[pivot]);
@@ -64,14 +69,17 @@ std::vector<double> solve_dense(std::vector<double> M, std::vector<double> b)
 }
 } // namespace
 
-FloatingPotentials::FloatingPotentials(Problem& p, Mat J) : _p(p)
+FloatingPotentials::FloatingPotentials(Problem& p,
+                                       const std::optional<la::petsc::Matrix>& matrix)
+    : _p(p)
 {
   for (std::size_t e = 0; e < p.electrodes.size(); ++e)
     if (p.electrodes[e].floating)
       _index.push_back(e);
-  PetscInt owned;
+  if (_index.empty())
+    return;
+  const Mat J = matrix->mat();
   la::petsc::Vector ones = make_vector(p);
-  VecGetLocalSize(ones.vec(), &owned);
   for (std::size_t e : _index)
   {
     VecSet(ones.vec(), 0.0);
@@ -112,21 +120,21 @@ void FloatingPotentials::residual(std::span<const double> r, std::span<const dou
     return;
   const auto charges = _p.reaction_charges(r);
   const auto target = _p.target_charges();
-  la::petsc::Vector abs_x = make_vector(_p);
+  std::vector<double> size(_index.size(), 0.0); // |c_e| . |x|
+  for (std::size_t k = 0; k < _index.size(); ++k)
   {
-    PetscScalar* a;
-    VecGetArray(abs_x.vec(), &a);
+    const PetscScalar* c;
+    VecGetArrayRead(_abs_c[k].vec(), &c);
     for (std::size_t i = 0; i < x.size(); ++i)
-      a[i] = std::abs(x[i]);
-    VecRestoreArray(abs_x.vec(), &a);
+      size[k] += c[i] * std::abs(x[i]);
+    VecRestoreArrayRead(_abs_c[k].vec(), &c);
   }
+  MPI_Allreduce(MPI_IN_PLACE, size.data(), size.size(), MPI_DOUBLE, MPI_SUM, _p.comm);
   for (std::size_t k = 0; k < _index.size(); ++k)
   {
     const std::size_t e = _index[k];
     _rho[k] = charges[e] - target[e];
-    double size;
-    VecDot(_abs_c[k].vec(), abs_x.vec(), &size);
-    _scale[k] = size + std::abs(target[e]);
+    _scale[k] = size[k] + std::abs(target[e]);
   }
 }
 

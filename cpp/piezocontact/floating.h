@@ -28,6 +28,7 @@
 #include "problem.h"
 
 #include <dolfinx/la/petsc.h>
+#include <optional>
 #include <petscksp.h>
 #include <span>
 #include <vector>
@@ -37,8 +38,9 @@ namespace piezocontact
 class FloatingPotentials
 {
 public:
-  /// `J`: the unconstrained Jacobian (no Dirichlet rows), any state
-  FloatingPotentials(Problem& p, Mat J);
+  /// `J`: the unconstrained Jacobian (no Dirichlet rows), any state; none
+  /// needed without floating electrodes
+  FloatingPotentials(Problem& p, const std::optional<dolfinx::la::petsc::Matrix>& J);
 
   bool empty() const { return _index.empty(); }
 

@@ -7,6 +7,7 @@
 #include <dolfinx/la/petsc.h>
 
 #include <algorithm>
+#include <optional>
 
 namespace piezocontact
 {
@@ -68,11 +69,11 @@ void assemble_into(Mat M, const FormList& terms,
 }
 /// J without Dirichlet conditions where floating electrodes need it (no
 /// matrix otherwise)
-la::petsc::Matrix unconstrained_jacobian(const Problem& p)
+std::optional<la::petsc::Matrix> unconstrained_jacobian(const Problem& p)
 {
   if (std::none_of(p.electrodes.begin(), p.electrodes.end(),
                    [](const Electrode& e) { return e.floating; }))
-    return la::petsc::Matrix(nullptr, false);
+    return std::nullopt;
   la::petsc::Matrix J(create_matrix(p.model.J, *p.W), false);
   assemble_into(J.mat(), p.model.J, {}, *p.W);
   return J;
@@ -83,7 +84,7 @@ NonlinearSystem::NonlinearSystem(Problem& p, FieldwiseConvergence& monitor, KSP 
                                  bool reuse_lu)
     : b(la::petsc::create_vector(*p.W->dofmap()->index_map, p.W->dofmap()->index_map_bs()),
         false),
-      A(create_matrix(p.model.J, *p.W), false), floating(p, unconstrained_jacobian(p).mat()),
+      A(create_matrix(p.model.J, *p.W), false), floating(p, unconstrained_jacobian(p)),
       _p(p), _monitor(monitor), _ksp(ksp), _reuse(reuse_lu),
       _Jc(create_matrix(p.model.J_contact, *p.W), false)
 {

@@ -311,6 +311,14 @@ void Problem::check_electrodes_apart(const std::string& source) const
     on[e].assign(mark.array().begin(), mark.array().begin() + owned);
   }
   for (std::size_t e = 0; e < electrodes.size(); ++e)
+  {
+    std::int64_t count = std::count(on[e].begin(), on[e].end(), 1);
+    MPI_Allreduce(MPI_IN_PLACE, &count, 1, MPI_INT64_T, MPI_SUM, comm);
+    if (electrodes[e].floating and count == 0)
+      throw ConfigError(source + ": boundaries." + electrodes[e].name
+                        + ".floating: the boundary has no vertices");
+  }
+  for (std::size_t e = 0; e < electrodes.size(); ++e)
     for (std::size_t f = e + 1; f < electrodes.size(); ++f)
     {
       if (!electrodes[e].floating and !electrodes[f].floating)

@@ -89,8 +89,8 @@ public:
   /// some vary in time; assembled once per time. Collective.
   double applied_load() const;
 
-  /// The potential of each electrode at x (its value at the electrode's
-  /// dofs, from the rank that owns the first), on every rank. Collective.
+  /// The potential of each electrode at x (the mean of its dofs' values:
+  /// the value where it is uniform), on every rank. Collective.
   std::vector<double> electrode_potentials(std::span<const double> x) const;
 
   /// Set the potential of each floating electrode to the value x has on it
