@@ -1,8 +1,8 @@
 #!/usr/bin/python3
 """What a floating electrode costs per step: example 1 with its right side an
-electrode, prescribed (20 V) or floating (its charge the one the prescribed
-run ends with, so that both runs solve problems of the same size), at
-k = h = 1/n, T = 1, outputs off but summary and checkpoints. A floating
+electrode, floating, and then prescribed with the potentials the floating
+run found (the same discrete problem), at k = h = 1/n, T = 1, outputs off
+but summary and checkpoints. A floating
 electrode adds one back-substitution per factorisation (its unit response)
 and a few dot products per Newton iteration (cpp/piezocontact/floating.h).
 
@@ -50,10 +50,20 @@ def row(n, kind, wall, summary):
     ops = summary["timing"]["operations"]
     its = sum(s["newton_iterations"] for s in steps)
     right = steps[-1]["electrodes"]["right"]
-    return (f"| {n} | {kind} | {summary['dofs']} | {wall:.2f} | "
+    floating = ops.get("floating_electrodes", {"seconds": 0.0})["seconds"]
+    return (f"| {n} | {kind} | {wall:.2f} | "
             f"{1e3 * summary['timing']['total_s'] / len(steps):.1f} | {its} | "
-            f"{ops['factorisation']['count']} | {1e3 * ops['triangular_solve']['seconds'] / len(steps):.2f} | "
+            f"{ops['factorisation']['count']} | "
+            f"{1e3 * ops['triangular_solve']['seconds'] / len(steps):.2f} | "
+            f"{1e3 * floating / len(steps):.2f} | "
             f"{right['potential']:.6g} | {right['reaction_charge']:.4e} |")
+
+
+def potential_table(summary):
+    """The right electrode's potential at every step, as a table history:
+    prescribing it poses the floating run's discrete problem again."""
+    return {"value": 1.0, "history": {"table": [
+        [s["t"], s["electrodes"]["right"]["potential"]] for s in summary["steps"]]}}
 
 
 def main():
@@ -69,26 +79,34 @@ def main():
              f"{' '.join(map(str, args.sizes))} --write docs/benchmarks.md` (this run: "
              f"{platform.node()}, {os.cpu_count()} cores, {time.strftime('%Y-%m-%d')}).\n",
              "Example 1 with `right` an electrode, k = h = 1/n, T = 1, XDMF and nodal "
-             f"files off; fastest of {args.repeat} runs. *per step*: the run's own "
-             "`timing.total_s` / steps; *solves*: the triangular solves' time per step "
-             "(the floating electrode's unit responses are among them); the last "
-             "columns: the right electrode at t = 1.\n",
-             "| n | right electrode | dofs | wall (s) | per step (ms) | Newton its | "
-             "factorisations | solves per step (ms) | potential (V) | reaction charge (C/m) |",
+             f"files off; fastest of {args.repeat} runs. First `right` floating with a "
+             "constant charge (the one a 20 V electrode ends with), then `right` prescribed "
+             "with the potential the floating run found at each step (a table history): the "
+             "same discrete problem, solved with and without the floating machinery. *per "
+             "step*: the run's own `timing.total_s` / steps; *solves*: triangular solves "
+             "per step; *floating*: unit responses, charge residuals and bordered updates "
+             "per step (`timing.operations.floating_electrodes`); the last columns: the "
+             "right electrode at t = 1.\n",
+             "| n | right electrode | wall (s) | per step (ms) | Newton its | "
+             "factorisations | solves per step (ms) | floating per step (ms) | "
+             "potential (V) | reaction charge (C/m) |",
              "|---|---|---|---|---|---|---|---|---|---|"]
     print("\n".join(lines), flush=True)
     base = json.loads(SQUARE.read_text())
     for n in args.sizes:
         prescribed = json.loads(json.dumps(base))
         prescribed["boundaries"]["right"] = {"potential": 20.0}
-        wall, summary = fastest(args.build, prescribed, n, args.repeat)
-        lines.append(row(n, "prescribed 20 V", wall, summary))
-        print(lines[-1], flush=True)
+        charge = run(args.build, prescribed, n)[1]["steps"][-1]["electrodes"]["right"][
+            "reaction_charge"]
         floating = json.loads(json.dumps(base))
-        charge = summary["steps"][-1]["electrodes"]["right"]["reaction_charge"]
         floating["boundaries"]["right"] = {"floating": {"charge": charge}}
         wall, summary = fastest(args.build, floating, n, args.repeat)
-        lines.append(row(n, "floating, that charge", wall, summary))
+        lines.append(row(n, f"floating, Q = {charge:.4e} C/m", wall, summary))
+        print(lines[-1], flush=True)
+        again = json.loads(json.dumps(base))
+        again["boundaries"]["right"] = {"potential": potential_table(summary)}
+        wall, summary = fastest(args.build, again, n, args.repeat)
+        lines.append(row(n, "prescribed, the floating run's potentials", wall, summary))
         print(lines[-1], flush=True)
     lines.append(f"\n(benchmark wall time {time.perf_counter() - t0:.0f} s)")
     if args.write:

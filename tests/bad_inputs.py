@@ -134,6 +134,9 @@ CASES = {
         MMS, ["boundaries.top.potential=3"],
         "boundaries.top.potential = 3.0: with a manufactured solution the Dirichlet data "
         "are the exact solution's: use \"exact\""),
+    "no potential anywhere": (
+        SQUARE, ['boundaries.left={"displacement":[0,0]}'],
+        "boundaries: none has a potential, so phi is known only up to a constant"),
     "a floating electrode with a potential": (
         SQUARE, ['boundaries.right={"floating":{},"potential":1}'],
         "boundaries.right: floating and potential are exclusive"),

@@ -536,8 +536,9 @@ void check_material(const json& spec, const std::string& path, const std::string
                      + std::to_string(d) + "x" + std::to_string(m) + ")");
 }
 
-// A floating potential is known only up to a constant unless some boundary
-// holds phi: the bordered system would be singular
+// The potential is known only up to a constant unless some boundary holds
+// it: the electric block of the Jacobian would be singular (a floating
+// electrode's capacitance too)
 void check_electrodes(const json& cfg, const std::string& source)
 {
   std::string floating;
@@ -548,18 +549,19 @@ void check_electrodes(const json& cfg, const std::string& source)
     if (bc.contains("floating") and floating.empty())
       floating = name;
   }
-  if (floating.empty())
-    return;
-  if (cfg.contains("manufactured"))
+  if (!floating.empty() and cfg.contains("manufactured"))
     fail(source, join("boundaries", floating) + ".floating: not with a manufactured solution "
                                                 "(its Dirichlet data are the exact solution's)");
-  if (!grounded)
-    fail(source, join("boundaries", floating) + ".floating: no boundary has a prescribed "
-                 "potential, so the floating one is known only up to a constant (ground an "
-                 "electrode: potential 0)");
+  if (grounded)
+    return;
+  if (floating.empty())
+    fail(source, "boundaries: none has a potential, so phi is known only up to a constant "
+                 "(ground an electrode: potential 0)");
+  fail(source, join("boundaries", floating) + ".floating: no boundary has a prescribed "
+               "potential, so the floating one is known only up to a constant (ground an "
+               "electrode: potential 0)");
 }
 
-// Rules that span keys (the same list as config.py's _check_semantics).
 void check_semantics(const json& cfg, const std::string& source)
 {
   const json& mesh = cfg["mesh"];
@@ -605,12 +607,12 @@ void check_semantics(const json& cfg, const std::string& source)
         fail(source, where + ": floating and " + other + " are exclusive (a floating "
                              "electrode's potential is an unknown, its charge is floating.charge)");
   }
-  check_electrodes(cfg, source);
   // Frictionless contact pushes only along the normal: without a clamped
   // boundary the body can slide, and the Jacobian is singular
   if (!held)
     fail(source, "boundaries: none has a displacement condition: with frictionless contact "
                  "nothing holds the body against sliding");
+  check_electrodes(cfg, source);
   check_manufactured(cfg, source);
 }
 

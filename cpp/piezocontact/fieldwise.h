@@ -14,7 +14,8 @@
 // rtol s_f can be met. Where s_f <= 1000 eps c_f, c_f the norm of
 // D^-1/2 sum_j |J_ij x_j| over f's rows i and the other fields' columns j
 // (the size of what they put into f's equations), the field is taken as
-// zero and r_f <= 1000 eps c_f accepted. A field that is not zero has s_f
+// zero and r_f <= 1000 eps c_f accepted. c_f is computed only for a field
+// that fails its test after a Newton step (|J| costs a matrix copy). A field that is not zero has s_f
 // of the order of c_f (at D = 0, beta grad phi balances e eps), so the
 // gate never opens for it. Each field in its own scale: a floor
 // from the other field's (a huge contact penalty inflates s_u) would accept
@@ -55,7 +56,8 @@ public:
                        std::int32_t num_owned, double rtol, double atol,
                        MPI_Comm comm);
 
-  /// Take D = |diag J| and |J| from an assembled Jacobian
+  /// Take D = |diag J| from an assembled Jacobian (and |J| if a zero field
+  /// needs it)
   void set_scaling(Mat A);
 
   /// Record one iterate (owned parts of x and F); true when converged. A
@@ -67,8 +69,10 @@ public:
 
 private:
   /// c_f of each field (in _dofs order) at x (owned entries), by J as last
-  /// set_scaling
-  std::vector<double> coupling(std::span<const double> x) const;
+  /// set_scaling. Collective.
+  std::vector<double> coupling(std::span<const double> x);
+  Mat _A = nullptr;
+  bool _abs_stale = true;
   /// |J| entry by entry (null if J is not an AIJ matrix: no c_f then)
   std::unique_ptr<dolfinx::la::petsc::Matrix> _abs_A;
   std::unique_ptr<dolfinx::la::petsc::Vector> _in, _out;

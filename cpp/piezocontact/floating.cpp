@@ -106,6 +106,9 @@ FloatingPotentials::FloatingPotentials(Problem& p,
 
 void FloatingPotentials::factorised(KSP ksp)
 {
+  if (empty())
+    return;
+  ScopedTimer timer(stats, "floating electrodes");
   const std::size_t n = _index.size();
   for (std::size_t f = 0; f < n; ++f)
     KSPSolve(ksp, _l[f].vec(), _z[f].vec());
@@ -118,6 +121,7 @@ void FloatingPotentials::residual(std::span<const double> r, std::span<const dou
 {
   if (empty())
     return;
+  ScopedTimer timer(stats, "floating electrodes");
   const auto charges = _p.reaction_charges(r);
   const auto target = _p.target_charges();
   std::vector<double> size(_index.size(), 0.0); // |c_e| . |x|
@@ -143,6 +147,7 @@ void FloatingPotentials::update(Vec dx0, Vec x)
   VecAXPY(x, -1.0, dx0);
   if (empty())
     return;
+  ScopedTimer timer(stats, "floating electrodes");
   const std::size_t n = _index.size();
   std::vector<double> rhs(n);
   for (std::size_t e = 0; e < n; ++e)

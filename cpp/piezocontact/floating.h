@@ -26,6 +26,7 @@
 #pragma once
 
 #include "problem.h"
+#include "timing.h"
 
 #include <dolfinx/la/petsc.h>
 #include <optional>
@@ -60,6 +61,10 @@ public:
   double relative_residual() const;
   /// max_e |rho_e| (C/m in 2D, C in 3D)
   double residual_norm() const;
+
+  /// What the floating electrodes cost: unit responses, charge residuals,
+  /// bordered updates
+  OperationStats stats;
 
 private:
   Problem& _p;

@@ -159,10 +159,12 @@ void NonlinearSystem::J(const Vec, Mat M)
   x_assembled.assign(x.begin(), x.end());
   k_assembled = _k_last;
   _monitor.set_scaling(M);
-  // Factorise here, timed apart from the triangular solves of KSPSolve
-  ScopedTimer timer(factorisation, "LU factorisation");
-  KSPSetOperators(_ksp, M, M);
-  KSPSetUp(_ksp);
+  {
+    // Factorise here, timed apart from the triangular solves of KSPSolve
+    ScopedTimer timer(factorisation, "LU factorisation");
+    KSPSetOperators(_ksp, M, M);
+    KSPSetUp(_ksp);
+  }
   floating.factorised(_ksp);
 }
 } // namespace piezocontact

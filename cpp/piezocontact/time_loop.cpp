@@ -100,7 +100,7 @@ std::string stalled(const std::vector<std::map<std::string, FieldNorms>>& histor
 double callback_seconds(const NonlinearSystem& sys)
 {
   return sys.residual.seconds + sys.jacobian.seconds + sys.contact_jacobian.seconds
-         + sys.factorisation.seconds;
+         + sys.factorisation.seconds + sys.floating.stats.seconds;
 }
 
 /// Where the time went. Triangular solves: the Newton time not spent in the
@@ -119,6 +119,7 @@ json timing(const NonlinearSystem& sys, double total_s, double newton_s,
             {"contact_jacobian", sys.contact_jacobian.to_json()},
             {"factorisation", sys.factorisation.to_json()},
             {"triangular_solve", {{"count", newton_its}, {"seconds", solves}}},
+            {"floating_electrodes", sys.floating.stats.to_json()},
             {"reused_factorisation", sys.reused}}}};
 }
 
