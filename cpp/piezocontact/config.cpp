@@ -816,7 +816,8 @@ RunSettings run_settings(const json& cfg)
     sorted[name] = bc;
   for (const auto& [name, bc] : sorted)
   {
-    DirichletSettings d{name};
+    DirichletSettings d;
+    d.boundary = name;
     if (bc.contains("displacement"))
     {
       if (bc["displacement"] == "exact")
