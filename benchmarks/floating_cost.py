@@ -21,6 +21,8 @@ import tempfile
 import time
 from pathlib import Path
 
+from output_cost import write_section
+
 ROOT = Path(__file__).resolve().parents[1]
 SQUARE = ROOT / "demos" / "square.json"
 HEADING = "## Cost of a floating electrode"
@@ -110,17 +112,7 @@ def main():
         print(lines[-1], flush=True)
     lines.append(f"\n(benchmark wall time {time.perf_counter() - t0:.0f} s)")
     if args.write:
-        path = Path(args.write)
-        text = path.read_text() if path.exists() else ""
-        section = "\n".join(lines) + "\n"
-        start = text.find(HEADING)
-        if start < 0:
-            text = text.rstrip("\n") + "\n\n" + section
-        else:
-            end = text.find("\n## ", start + 1)
-            text = text[:start] + section + (text[end + 1:] if end >= 0 else "")
-        path.write_text(text)
-
+        write_section(args.write, HEADING, lines)
 
 if __name__ == "__main__":
     main()

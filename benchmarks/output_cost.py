@@ -56,6 +56,21 @@ def ms_per_step(seconds, steps):
     return f"{1e3 * seconds / steps:.1f}"
 
 
+def write_section(path, heading, lines):
+    """(Re)place the section that starts with `heading` (to the next ##
+    heading) in a markdown file, or append it."""
+    path = Path(path)
+    text = path.read_text() if path.exists() else ""
+    section = "\n".join(lines) + "\n"
+    start = text.find(heading)
+    if start < 0:
+        text = text.rstrip("\n") + "\n\n" + section
+    else:
+        end = text.find("\n## ", start + 1)
+        text = text[:start] + section + (text[end + 1:] if end >= 0 else "")
+    path.write_text(text)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--sizes", type=int, nargs="+", default=[128, 256])
@@ -99,17 +114,7 @@ def main():
             print(lines[-1], flush=True)
     lines.append(f"\n(benchmark wall time {time.perf_counter() - t0:.0f} s)")
     if args.write:
-        # replace this section (to the next ## heading), or append it
-        path = Path(args.write)
-        text = path.read_text() if path.exists() else ""
-        section = "\n".join(lines) + "\n"
-        start = text.find(f"{HEADING} ({args.solver})")
-        if start < 0:
-            text = text.rstrip("\n") + "\n\n" + section
-        else:
-            end = text.find("\n## ", start + 1)
-            text = text[:start] + section + (text[end + 1:] if end >= 0 else "")
-        path.write_text(text)
+        write_section(args.write, f"{HEADING} ({args.solver})", lines)
 
 if __name__ == "__main__":
     main()

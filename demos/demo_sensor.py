@@ -176,6 +176,9 @@ def main():
     ratio = np.max(np.abs(cpp["sensed"][last])) / np.max(np.abs(cpp["applied"][last]))
     print(f"\nthe sensor reads {ratio:.3f} of the drive; its charge stays "
           f"{np.max(np.abs(cpp['sensor_charge'])):.1e} C/m (open circuit)")
+    high, low = cpp["sensed"][last].max(), cpp["sensed"][last].min()
+    print(f"sensed peaks {high:.3f} V (touching) and {low:.3f} V (free): "
+          f"{1 - high / -low:.1%} lower where it touches")
     touching = cpp["force"][last] > 0
     print(f"contact in {touching.mean():.0%} of the last cycle, force up to "
           f"{cpp['force'].max():.3g} N/m, contact length up to {cpp['length'].max():.3g} m "
