@@ -1,9 +1,21 @@
 #!/usr/bin/env bash
-# Install the Debian 12 packages piezocontact needs (only those missing),
-# then configure and build it in build/. Safe to run again: it does only
-# what is left to do.
+# Install the Debian packages piezocontact needs (only those missing), then
+# configure and build it in build/ and install it under /usr/local. Safe to
+# run again: it does only what is left to do. Debian 12 (bookworm, dolfinx
+# 0.5.2) and Debian 13 (trixie, dolfinx 0.9.0; see scripts/debian13.sh).
+# --packages-only: install the packages and stop.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+
+# The one difference in what to install: the bindings' library (dolfinx's
+# Python layer is pybind11 in 0.5, nanobind in 0.9; ours must match it)
+release=$(. /etc/os-release && echo "${VERSION_CODENAME:-unknown}")
+case "$release" in
+  bookworm) BINDINGS=(pybind11-dev) ;;
+  trixie) BINDINGS=(nanobind-dev python3-nanobind) ;;
+  *) echo "setup: Debian 12 (bookworm) or 13 (trixie) expected, found '$release'" >&2
+     exit 2 ;;
+esac
 
 PACKAGES=(
   # FEniCSx 0.5 stack: dolfinx C++ and Python, ffcx, UFL, basix, PETSc
@@ -16,7 +28,7 @@ PACKAGES=(
   # build: compilers, CMake, pkg-config (PETSc), JSON for the C++ config
   cmake g++ make pkg-config nlohmann-json3-dev libgtest-dev
   # Python bindings of the C++ core
-  pybind11-dev python3-dev
+  "${BINDINGS[@]}" python3-dev
   # MPI launcher; OpenBLAS makes MUMPS' LU ~3x faster than reference BLAS
   openmpi-bin libopenblas0
   # tests and pictures
@@ -40,6 +52,7 @@ if ((${#missing[@]})); then
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q --no-install-recommends \
     "${missing[@]}"
 fi
+[ "${1:-}" != --packages-only ] || exit 0
 
 # Debian's packages live in /usr/bin/python3, not in a pyenv python3 on PATH
 cmake -B build -S . -DCMAKE_BUILD_TYPE=Release -DPython3_EXECUTABLE=/usr/bin/python3 >/dev/null

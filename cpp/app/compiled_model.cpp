@@ -15,14 +15,15 @@ using namespace dolfinx;
 
 namespace
 {
-using Coefficients = std::map<std::string, std::shared_ptr<const fem::Function<double>>>;
-using Constants = std::map<std::string, std::shared_ptr<const fem::Constant<double>>>;
-using Tags = std::shared_ptr<mesh::MeshTags<std::int32_t>>;
+using compat::Coefficients;
+using compat::Constants;
+/// The entities a term is integrated over (null: only its unmarked integrals)
+using Piece = const std::vector<std::int32_t>*;
 
 /// The ahead-of-time forms of one cell type (see forms/entry_points.py)
 struct Kernels
 {
-  ufcx_function_space* (*space)(const char*);
+  compat::UfcxSpaceFactory space;
   ufcx_form *F_region, *J_region, *L_region, *F_boundary, *L_boundary, *F_contact,
       *J_contact, *boundary_measure, *electrode_charge, *contact_pressure_load,
       *contact_nodal_area;
@@ -41,7 +42,7 @@ struct ManufacturedKernels
 #define PIEZO_KERNELS(P)                                                                \
   Kernels                                                                               \
   {                                                                                     \
-    functionspace_form_##P##_F_region, form_##P##_F_region, form_##P##_J_region,        \
+    PIEZO_UFCX_SPACE(functionspace_form_##P##_F_region), form_##P##_F_region, form_##P##_J_region,        \
         form_##P##_L_region, form_##P##_F_boundary, form_##P##_L_boundary,              \
         form_##P##_F_contact, form_##P##_J_contact, form_##P##_boundary_measure,        \
         form_##P##_electrode_charge, form_##P##_contact_pressure_load,                  \
@@ -105,9 +106,9 @@ Model compiled_model(const NamedMesh& named, const json& cfg)
   Model m;
   m.mesh = named;
   auto mesh = named.mesh;
-  const int d = mesh->geometry().dim(), tdim = mesh->topology().dim();
+  const int d = mesh->geometry().dim();
   const Kernels k = kernels(d);
-  m.W = std::make_shared<fem::FunctionSpace>(fem::create_functionspace(k.space, "x", mesh));
+  m.W = compat::mixed_p1_space(mesh, k.space);
   m.x = std::make_shared<fem::Function<double>>(m.W);
   m.x->name = "x";
   m.x_prev = std::make_shared<fem::Function<double>>(m.W);
@@ -120,17 +121,13 @@ Model compiled_model(const NamedMesh& named, const json& cfg)
   const Coefficients coefficients = {{"x", m.x}, {"x_prev", m.x_prev}};
   // One term: a form over the entities of `piece` (dx(1) or ds(1))
   auto form = [&](const ufcx_form* f, int rank, const Constants& constants,
-                  fem::IntegralType type, const Tags& piece)
+                  fem::IntegralType type, Piece piece)
   {
-    std::vector<std::shared_ptr<const fem::FunctionSpace>> spaces(rank, m.W);
-    return std::make_shared<const fem::Form<double>>(fem::create_form<double>(
-        *f, spaces, coefficients, constants, {{type, piece.get()}}, mesh));
+    std::vector<std::shared_ptr<const compat::FunctionSpace>> spaces(rank, m.W);
+    return compat::create_form(*f, spaces, coefficients, constants, type, piece, mesh);
   };
   auto expression = [&](const ufcx_expression* e, const Coefficients& c, const Constants& consts)
-  {
-    return std::make_shared<const fem::Expression<double>>(
-        fem::create_expression<double>(*e, c, consts, mesh));
-  };
+  { return compat::create_expression(*e, c, consts, mesh); };
   const auto cell = fem::IntegralType::cell, facet = fem::IntegralType::exterior_facet;
   const Constants shared = merged({&m.constants});
   const auto mms = manufactured_kernels(d);
@@ -139,11 +136,10 @@ Model compiled_model(const NamedMesh& named, const json& cfg)
   {
     auto& material = m.materials[name] = zero_constants(forms::material_shapes(d));
     const auto cells = named.region_cells(name);
-    const Tags piece = mark(mesh, tdim, cells);
     const Constants c = merged({&m.constants, &material});
-    m.F.push_back(form(manufactured ? mms.F_region : k.F_region, 1, c, cell, piece));
-    m.J.push_back(form(k.J_region, 2, c, cell, piece));
-    m.L.push_back(form(manufactured ? mms.L_region : k.L_region, 1, c, cell, piece));
+    m.F.push_back(form(manufactured ? mms.F_region : k.F_region, 1, c, cell, &cells));
+    m.J.push_back(form(k.J_region, 2, c, cell, &cells));
+    m.L.push_back(form(manufactured ? mms.L_region : k.L_region, 1, c, cell, &cells));
     m.fields.push_back({cells, expression(k.electric_displacement, coefficients, c),
                         expression(k.stress, coefficients, c)});
     if (manufactured) // one region (checked): the exact solution's surface loads
@@ -155,11 +151,11 @@ Model compiled_model(const NamedMesh& named, const json& cfg)
   for (const auto& [name, _] : named.tag_of)
   {
     auto& load = m.loads[name] = zero_constants(forms::load_shapes(d));
-    const Tags piece = mark(mesh, tdim - 1, named.boundary_facets(name));
+    const auto facets = named.boundary_facets(name);
     const Constants c = merged({&m.constants, &load});
-    m.F.push_back(form(k.F_boundary, 1, c, facet, piece));
-    m.L.push_back(form(k.L_boundary, 1, c, facet, piece));
-    m.boundary_measures[name] = form(k.boundary_measure, 0, {}, facet, piece);
+    m.F.push_back(form(k.F_boundary, 1, c, facet, &facets));
+    m.L.push_back(form(k.L_boundary, 1, c, facet, &facets));
+    m.boundary_measures[name] = form(k.boundary_measure, 0, {}, facet, &facets);
   }
   for (const auto& [name, bc] : cfg["boundaries"].items())
     if (bc.value("contact", false) and named.tag_of.contains(name))
@@ -167,7 +163,7 @@ Model compiled_model(const NamedMesh& named, const json& cfg)
       const auto facets = named.boundary_facets(name);
       m.contact_facets.insert(m.contact_facets.end(), facets.begin(), facets.end());
     }
-  const Tags contact = mark(mesh, tdim - 1, m.contact_facets);
+  const Piece contact = &m.contact_facets;
   m.F.push_back(form(manufactured ? mms.F_contact : k.F_contact, 1, shared, facet, contact));
   m.J.push_back(form(k.J_contact, 2, shared, facet, contact));
   m.J_contact.push_back(m.J.back());
@@ -182,9 +178,11 @@ Model compiled_model(const NamedMesh& named, const json& cfg)
   for (const auto& [name, bc] : cfg["boundaries"].items())
     if ((bc.contains("potential") or bc.contains("floating")) and named.tag_of.contains(name))
       for (const auto& [region, material] : m.materials)
+      {
+        const auto facets = named.boundary_facets_of(name, region);
         m.electrode_charge[name].push_back(
-            form(k.electrode_charge, 0, merged({&m.constants, &material}), facet,
-                 mark(mesh, tdim - 1, named.boundary_facets_of(name, region))));
+            form(k.electrode_charge, 0, merged({&m.constants, &material}), facet, &facets));
+      }
 
   if (manufactured)
   {

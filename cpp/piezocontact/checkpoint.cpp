@@ -11,19 +11,18 @@ namespace
 
 /// Input (file) index of the vertex of each local dof (owned and ghost) of a
 /// P1 space: P1 dofs and P1 geometry nodes follow the same cell-local order
-std::vector<std::int64_t> input_vertex_of_dofs(const fem::FunctionSpace& V)
+std::vector<std::int64_t> input_vertex_of_dofs(const compat::FunctionSpace& V)
 {
   const auto& mesh = *V.mesh();
   const auto& imap = *V.dofmap()->index_map;
   std::vector<std::int64_t> vertex(imap.size_local() + imap.num_ghosts(), -1);
-  const auto& x_dofmap = mesh.geometry().dofmap();
   const auto& input = mesh.geometry().input_global_indices();
-  const int tdim = mesh.topology().dim();
-  const auto cells = mesh.topology().index_map(tdim);
+  const int tdim = compat::topology(mesh).dim();
+  const auto cells = compat::topology(mesh).index_map(tdim);
   const std::int32_t num_cells = cells->size_local() + cells->num_ghosts();
   for (std::int32_t c = 0; c < num_cells; ++c)
   {
-    const auto nodes = x_dofmap.links(c);
+    const auto nodes = compat::cell_nodes(mesh, c);
     const auto dofs = V.dofmap()->cell_dofs(c);
     for (std::size_t j = 0; j < dofs.size(); ++j)
       vertex[dofs[j]] = input[nodes[j]];

@@ -23,10 +23,10 @@ Probes::Probes(const Problem& problem, const std::vector<std::array<double, 3>>&
   std::vector<double> flat;
   for (const auto& p : points)
     flat.insert(flat.end(), p.begin(), p.end());
-  const int tdim = mesh.topology().dim();
-  geometry::BoundingBoxTree tree(mesh, tdim);
-  const auto candidates = geometry::compute_collisions(tree, flat);
-  const auto colliding = geometry::compute_colliding_cells(mesh, candidates, flat);
+  const auto tree = compat::cell_tree(mesh);
+  const auto candidates = geometry::compute_collisions(tree, std::span<const double>(flat));
+  const auto colliding
+      = geometry::compute_colliding_cells(mesh, candidates, std::span<const double>(flat));
 
   int rank, size;
   MPI_Comm_rank(problem.comm, &rank);
@@ -115,10 +115,12 @@ std::array<double, 3> outward_normal(const std::vector<const double*>& v, const 
 ContactGeometry::ContactGeometry(const Problem& problem)
 {
   const auto& mesh = *problem.mesh;
-  const int tdim = mesh.topology().dim();
+  const int tdim = compat::topology(mesh).dim();
   const auto& facets = problem.model.contact_facets;
-  mesh.topology_mutable().create_connectivity(tdim - 1, tdim);
-  const auto f_to_c = mesh.topology().connectivity(tdim - 1, tdim);
+  // (0.9's entities_to_geometry needs both directions)
+  compat::topology_mutable(mesh).create_connectivity(tdim - 1, tdim);
+  compat::topology_mutable(mesh).create_connectivity(tdim, tdim - 1);
+  const auto f_to_c = compat::topology(mesh).connectivity(tdim - 1, tdim);
   std::vector<std::int32_t> cells;
   for (auto f : facets)
     cells.push_back(f_to_c->links(f)[0]);

@@ -8,7 +8,6 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <dolfinx/common/loguru.hpp>
 #include <fcntl.h>
 #include <cstring>
 #include <fstream>
@@ -46,7 +45,8 @@ namespace
 /// (a segmentation fault): refuse such a distribution. Collective.
 void check_every_rank_has_cells(const NamedMesh& mesh, MPI_Comm comm, const std::string& source)
 {
-  const auto cells = mesh.mesh->topology().index_map(mesh.mesh->topology().dim());
+  const auto& topology = compat::topology(*mesh.mesh);
+  const auto cells = topology.index_map(topology.dim());
   const int mine = cells->size_local();
   int fewest = 0, size = 0;
   MPI_Allreduce(&mine, &fewest, 1, MPI_INT, MPI_MIN, comm);
@@ -272,7 +272,7 @@ int command_line(const std::string& program, const std::vector<std::string>& arg
   MPI_Comm_rank(comm, &rank);
   // Our messages say what went wrong; dolfinx's warnings (e.g. Newton's, at
   // each step that is then halved) would only repeat it
-  loguru::g_stderr_verbosity = loguru::Verbosity_ERROR;
+  compat::log_errors_only();
   Arguments arguments;
   try
   {

@@ -4,10 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <dolfinx/fem/CoordinateElement.h>
 #include <dolfinx/io/XDMFFile.h>
-#include <dolfinx/mesh/generation.h>
-#include <dolfinx/mesh/utils.h>
 #include <fstream>
 #include <sstream>
 
@@ -54,8 +51,8 @@ mesh::DiagonalType diagonal_type(const std::string& name)
   return types.at(name);
 }
 
-std::shared_ptr<mesh::MeshTags<std::int32_t>>
-make_tags(std::shared_ptr<mesh::Mesh> m, int dim,
+std::shared_ptr<compat::MeshTags>
+make_tags(std::shared_ptr<compat::Mesh> m, int dim,
           std::vector<std::pair<std::int32_t, std::int32_t>> tagged)
 {
   std::sort(tagged.begin(), tagged.end()); // MeshTags needs sorted indices
@@ -65,15 +62,14 @@ make_tags(std::shared_ptr<mesh::Mesh> m, int dim,
     indices.push_back(f);
     values.push_back(v);
   }
-  return std::make_shared<mesh::MeshTags<std::int32_t>>(m, dim, std::move(indices),
-                                                        std::move(values));
+  return compat::make_meshtags(m, dim, std::move(indices), std::move(values));
 }
 
 /// Every cell (owned and ghost) in one region
 void one_region(NamedMesh& out)
 {
-  const int tdim = out.mesh->topology().dim();
-  const auto cells = out.mesh->topology().index_map(tdim);
+  const int tdim = compat::topology(*out.mesh).dim();
+  const auto cells = compat::topology(*out.mesh).index_map(tdim);
   std::vector<std::pair<std::int32_t, std::int32_t>> all;
   for (std::int32_t c = 0; c < cells->size_local() + cells->num_ghosts(); ++c)
     all.emplace_back(c, 1);
@@ -96,14 +92,11 @@ void name_sides(NamedMesh& out, const std::array<double, 3>& L)
   {
     const int axis = side.first;
     const double c = side.second * L[axis];
-    const auto facets = mesh::locate_entities_boundary(
-        *out.mesh, d - 1,
-        [axis, c](const xt::xtensor<double, 2>& X)
+    const auto facets = compat::locate_boundary_facets(
+        *out.mesh, [axis, c](double x, double y, double z)
         {
-          xt::xtensor<bool, 1> on(std::array<std::size_t, 1>{X.shape(1)});
-          for (std::size_t i = 0; i < X.shape(1); ++i) // as numpy.isclose
-            on(i) = std::abs(X(axis, i) - c) <= 1e-8 + 1e-5 * std::abs(c);
-          return on;
+          const double xi = axis == 0 ? x : axis == 1 ? y : z;
+          return std::abs(xi - c) <= 1e-8 + 1e-5 * std::abs(c); // as numpy.isclose
         });
     out.tag_of[name] = ++slot;
     for (auto f : facets)
@@ -117,10 +110,9 @@ NamedMesh unit_square(const json& cfg, MPI_Comm comm)
 {
   NamedMesh out;
   const std::size_t n = cfg["mesh"]["n"].get<std::size_t>();
-  out.mesh = std::make_shared<mesh::Mesh>(mesh::create_rectangle(
-      comm, {{{0.0, 0.0}, {1.0, 1.0}}}, {n, n}, mesh::CellType::triangle,
-      mesh::GhostMode::shared_facet,
-      diagonal_type(cfg["mesh"].value("diagonal", std::string("right")))));
+  out.mesh = std::make_shared<compat::Mesh>(
+      compat::create_rectangle(comm, {{{0.0, 0.0}, {1.0, 1.0}}}, {n, n},
+                               diagonal_type(cfg["mesh"].value("diagonal", std::string("right")))));
   name_sides(out, {1.0, 1.0, 0.0});
   return out;
 }
@@ -130,17 +122,15 @@ NamedMesh box(const json& cfg, MPI_Comm comm)
   NamedMesh out;
   const auto n = cfg["mesh"]["n"].get<std::array<std::size_t, 3>>();
   const auto L = cfg["mesh"]["size"].get<std::array<double, 3>>();
-  out.mesh = std::make_shared<mesh::Mesh>(
-      mesh::create_box(comm, {{{0.0, 0.0, 0.0}, L}}, n, mesh::CellType::tetrahedron,
-                       mesh::GhostMode::shared_facet));
+  out.mesh = std::make_shared<compat::Mesh>(compat::create_box(comm, {{{0.0, 0.0, 0.0}, L}}, n));
   name_sides(out, L);
   return out;
 }
 
 /// A file's tags of named groups ({name: file tag}) renumbered 1, 2, ...
 /// in sorted name order (slot_of: name -> new tag); untagged groups dropped
-std::shared_ptr<mesh::MeshTags<std::int32_t>>
-renumbered(std::shared_ptr<mesh::Mesh> m, int dim, const json& names,
+std::shared_ptr<compat::MeshTags>
+renumbered(std::shared_ptr<compat::Mesh> m, int dim, const json& names,
            const std::vector<std::int32_t>& indices, const std::vector<std::int32_t>& values,
            std::map<std::string, int>& slot_of)
 {
@@ -200,26 +190,19 @@ NamedMesh read_xdmf(const std::filesystem::path& file, MPI_Comm comm,
       throw std::runtime_error("cells of type " + mesh::to_string(cell) + " and degree "
                                + std::to_string(degree)
                                + ": only affine triangles and tetrahedra are supported");
-    out.mesh = std::make_shared<mesh::Mesh>(f.read_mesh(
-        fem::CoordinateElement(cell, 1), mesh::GhostMode::shared_facet, "mesh"));
-    const int tdim = out.mesh->topology().dim();
-    out.mesh->topology_mutable().create_connectivity(tdim - 1, tdim);
-    const auto file_tags = f.read_meshtags(out.mesh, "facets");
-    tag_indices = file_tags.indices();
-    tag_values = file_tags.values();
+    out.mesh = std::make_shared<compat::Mesh>(compat::read_mesh(f, cell, "mesh"));
+    const int tdim = compat::topology(*out.mesh).dim();
+    compat::topology_mutable(*out.mesh).create_connectivity(tdim - 1, tdim);
+    std::tie(tag_indices, tag_values) = compat::read_meshtags(f, out.mesh, "facets");
     if (!regions.is_null())
-    {
-      const auto cell_tags = f.read_meshtags(out.mesh, "cells");
-      cell_indices = cell_tags.indices();
-      cell_values = cell_tags.values();
-    }
+      std::tie(cell_indices, cell_values) = compat::read_meshtags(f, out.mesh, "cells");
   }
   catch (const std::exception& e) // every rank reads the same file
   {
     throw ConfigError(source + ": mesh: cannot read a mesh \"mesh\" with facet "
                       "tags \"facets\" from " + file.string() + ": " + e.what());
   }
-  const int tdim = out.mesh->topology().dim();
+  const int tdim = compat::topology(*out.mesh).dim();
   out.facet_tags = renumbered(out.mesh, tdim - 1, names, tag_indices, tag_values, out.tag_of);
   if (regions.is_null())
     one_region(out);

@@ -6,8 +6,6 @@
 #include "config.h"
 #include "model.h"
 
-#include <dolfinx/mesh/Mesh.h>
-#include <dolfinx/mesh/MeshTags.h>
 #include <filesystem>
 #include <map>
 #include <memory>

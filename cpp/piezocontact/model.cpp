@@ -12,8 +12,8 @@ std::vector<std::int32_t> tagged(const mesh::MeshTags<std::int32_t>* tags, int t
   std::vector<std::int32_t> out;
   if (!tags)
     return out;
-  const auto& idx = tags->indices();
-  const auto& val = tags->values();
+  const auto idx = tags->indices();
+  const auto val = tags->values();
   for (std::size_t i = 0; i < idx.size(); ++i)
     if (val[i] == tag)
       out.push_back(idx[i]);
@@ -35,9 +35,9 @@ std::vector<std::int32_t> NamedMesh::region_cells(const std::string& name) const
 std::vector<std::int32_t> NamedMesh::boundary_facets_of(const std::string& boundary,
                                                         const std::string& region) const
 {
-  const int tdim = mesh->topology().dim();
-  mesh->topology_mutable().create_connectivity(tdim - 1, tdim);
-  const auto f_to_c = mesh->topology().connectivity(tdim - 1, tdim);
+  const int tdim = compat::topology(*mesh).dim();
+  compat::topology_mutable(*mesh).create_connectivity(tdim - 1, tdim);
+  const auto f_to_c = compat::topology(*mesh).connectivity(tdim - 1, tdim);
   std::vector<std::int32_t> cells = region_cells(region);
   std::sort(cells.begin(), cells.end());
   std::vector<std::int32_t> out;
@@ -47,13 +47,4 @@ std::vector<std::int32_t> NamedMesh::boundary_facets_of(const std::string& bound
   return out;
 }
 
-std::shared_ptr<mesh::MeshTags<std::int32_t>>
-mark(std::shared_ptr<const mesh::Mesh> mesh, int dim, std::vector<std::int32_t> entities)
-{
-  std::sort(entities.begin(), entities.end()); // MeshTags needs sorted, unique indices
-  entities.erase(std::unique(entities.begin(), entities.end()), entities.end());
-  std::vector<std::int32_t> ones(entities.size(), 1);
-  return std::make_shared<mesh::MeshTags<std::int32_t>>(mesh, dim, std::move(entities),
-                                                        std::move(ones));
-}
 } // namespace piezocontact

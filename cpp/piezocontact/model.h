@@ -8,6 +8,8 @@
 // forms are summed, so neither regions nor boundaries are limited in number.
 #pragma once
 
+#include "compat.h"
+
 #include <dolfinx/fem/Constant.h>
 #include <dolfinx/fem/Expression.h>
 #include <dolfinx/fem/Form.h>
@@ -25,7 +27,7 @@ namespace piezocontact
 /// A mesh with its named boundaries (facet tags) and regions (cell tags)
 struct NamedMesh
 {
-  std::shared_ptr<dolfinx::mesh::Mesh> mesh;
+  std::shared_ptr<compat::Mesh> mesh;
   std::shared_ptr<dolfinx::mesh::MeshTags<std::int32_t>> facet_tags, cell_tags;
   std::map<std::string, int> tag_of;    ///< boundary name -> facet tag
   std::map<std::string, int> region_of; ///< region name -> cell tag
@@ -37,12 +39,6 @@ struct NamedMesh
   std::vector<std::int32_t> boundary_facets_of(const std::string& boundary,
                                                const std::string& region) const;
 };
-
-/// Tags marking `entities` (local indices, any order) of dimension `dim`
-/// with 1: the piece a term of the model is integrated over (dx(1), ds(1))
-std::shared_ptr<dolfinx::mesh::MeshTags<std::int32_t>>
-mark(std::shared_ptr<const dolfinx::mesh::Mesh> mesh, int dim,
-     std::vector<std::int32_t> entities);
 
 using ConstantMap = std::map<std::string, std::shared_ptr<dolfinx::fem::Constant<double>>>;
 using FormList = std::vector<std::shared_ptr<const dolfinx::fem::Form<double>>>;
@@ -59,7 +55,7 @@ struct Model
 {
   NamedMesh mesh;
   /// The mixed space of x = (u, phi): sub-space 0 is u, 1 is phi
-  std::shared_ptr<const dolfinx::fem::FunctionSpace> W;
+  std::shared_ptr<const compat::FunctionSpace> W;
   /// The unknown at t_n and the state at t_{n-1}, coefficients of the forms
   std::shared_ptr<dolfinx::fem::Function<double>> x, x_prev;
   /// The Constants shared by every term, by name (forms/piezo_forms.py

@@ -2,7 +2,6 @@
 
 #include <dolfinx/fem/assembler.h>
 #include <dolfinx/fem/petsc.h>
-#include <dolfinx/fem/sparsitybuild.h>
 #include <dolfinx/la/SparsityPattern.h>
 #include <dolfinx/la/petsc.h>
 
@@ -34,29 +33,21 @@ std::vector<double> local_values(Mat M)
 
 /// A matrix whose sparsity holds every term of a sum of bilinear forms on
 /// V x V (cell and exterior-facet integrals, the kinds the model has)
-Mat create_matrix(const FormList& terms, const fem::FunctionSpace& V)
+Mat create_matrix(const FormList& terms, const compat::FunctionSpace& V)
 {
   const auto& dofmap = *V.dofmap();
   const int bs = dofmap.index_map_bs();
   la::SparsityPattern pattern(V.mesh()->comm(), {dofmap.index_map, dofmap.index_map},
                               {bs, bs});
   for (const auto& a : terms)
-  {
-    for (int id : a->integral_ids(fem::IntegralType::cell))
-      fem::sparsitybuild::cells(pattern, a->cell_domains(id), {{dofmap, dofmap}});
-    for (int id : a->integral_ids(fem::IntegralType::exterior_facet))
-      fem::sparsitybuild::exterior_facets(pattern, a->exterior_facet_domains(id),
-                                          {{dofmap, dofmap}});
-    if (!a->integral_ids(fem::IntegralType::interior_facet).empty())
-      throw std::runtime_error("interior-facet terms are not supported by the Jacobian's sparsity");
-  }
-  pattern.assemble();
+    compat::add_sparsity(pattern, *a, dofmap);
+  compat::finalize(pattern);
   return la::petsc::create_matrix(V.mesh()->comm(), pattern);
 }
 
 void assemble_into(Mat M, const FormList& terms,
                    const std::vector<std::shared_ptr<const fem::DirichletBC<double>>>& bcs,
-                   const fem::FunctionSpace& V)
+                   const compat::FunctionSpace& V)
 {
   MatZeroEntries(M);
   for (const auto& a : terms)
@@ -101,7 +92,7 @@ void NonlinearSystem::F(const Vec x, Vec r)
     fem::petsc::assemble_vector(r, *term);
   // lifting is linear in the bilinear form: term by term is the sum's
   for (const auto& term : _p.model.J)
-    fem::petsc::apply_lifting(r, {term}, {_p.bcs}, {x}, -1.0);
+    compat::apply_lifting(r, term, _p.bcs, x, -1.0);
   VecGhostUpdateBegin(r, ADD_VALUES, SCATTER_REVERSE);
   VecGhostUpdateEnd(r, ADD_VALUES, SCATTER_REVERSE);
   record_reactions(r);
@@ -116,7 +107,7 @@ void NonlinearSystem::F(const Vec x, Vec r)
     VecRestoreArrayRead(x, &xa);
     VecRestoreArrayRead(r, &ra);
   }
-  fem::petsc::set_bc(r, _p.bcs, x, -1.0);
+  compat::set_bc(r, _p.bcs, x, -1.0);
 }
 
 // At a Dirichlet row the residual before set_bc is the unconstrained one

@@ -1,6 +1,5 @@
 #include "output.h"
 
-#include <basix/finite-element.h>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -261,24 +260,18 @@ Writer::Writer(const Problem& problem, const OutputSettings& settings, const fs:
     return;
   auto mesh = problem.mesh;
   const int d = mesh->geometry().dim();
-  const auto dg0 = basix::create_element(
-      basix::element::family::P,
-      d == 2 ? basix::cell::type::triangle : basix::cell::type::tetrahedron, 0,
-      basix::element::lagrange_variant::unset, true);
-  _D = std::make_shared<fem::Function<double>>(
-      std::make_shared<fem::FunctionSpace>(fem::create_functionspace(mesh, dg0, d)));
+  _D = std::make_shared<fem::Function<double>>(compat::dg0_space(mesh, d));
   _D->name = "D";
-  _stress = std::make_shared<fem::Function<double>>(std::make_shared<fem::FunctionSpace>(
-      fem::create_functionspace(mesh, dg0, d == 2 ? 3 : 6)));
+  _stress = std::make_shared<fem::Function<double>>(compat::dg0_space(mesh, d == 2 ? 3 : 6));
   // XDMF has no Voigt vector: one scalar field per component
   const std::vector<std::string> voigt
       = d == 2 ? std::vector<std::string>{"xx", "yy", "xy"}
                : std::vector<std::string>{"xx", "yy", "zz", "yz", "xz", "xy"};
   for (std::size_t c = 0; c < voigt.size(); ++c)
   {
-    auto [Vc, map] = _stress->function_space()->sub({int(c)})->collapse();
+    auto [Vc, map] = compat::sub(*_stress->function_space(), int(c))->collapse();
     _stress_components.push_back(std::make_shared<fem::Function<double>>(
-        std::make_shared<fem::FunctionSpace>(std::move(Vc))));
+        std::make_shared<compat::FunctionSpace>(std::move(Vc))));
     _stress_components.back()->name = "stress_" + voigt[c];
     _stress_maps.push_back(std::move(map));
   }

@@ -18,11 +18,11 @@ Problem::Problem(Model model_, const std::vector<DirichletSettings>& dirichlet,
       W(model.W), x(model.x), x_prev(model.x_prev)
 {
   // Collapsed sub-spaces and the W-dofs of each field
-  auto [Vu, map_u] = W->sub({0})->collapse();
-  V_u = std::make_shared<fem::FunctionSpace>(std::move(Vu));
+  auto [Vu, map_u] = compat::sub(*W, 0)->collapse();
+  V_u = std::make_shared<compat::FunctionSpace>(std::move(Vu));
   u_dofs = std::move(map_u);
-  auto [Vphi, map_phi] = W->sub({1})->collapse();
-  V_phi = std::make_shared<fem::FunctionSpace>(std::move(Vphi));
+  auto [Vphi, map_phi] = compat::sub(*W, 1)->collapse();
+  V_phi = std::make_shared<compat::FunctionSpace>(std::move(Vphi));
   phi_dofs = std::move(map_phi);
   u = std::make_shared<fem::Function<double>>(V_u);
   u->name = "u";
@@ -203,7 +203,8 @@ la::Vector<double> Problem::assemble(const FormList& terms) const
 void Problem::create_bcs(const std::vector<DirichletSettings>& dirichlet,
                          const std::string& source)
 {
-  const int fdim = mesh->topology().dim() - 1;
+  const int fdim = compat::topology(*mesh).dim() - 1;
+  const auto W_phi = compat::sub(*W, 1);
   for (const auto& bc : dirichlet)
   {
     if (!model.mesh.tag_of.contains(bc.boundary))
@@ -244,8 +245,8 @@ void Problem::create_bcs(const std::vector<DirichletSettings>& dirichlet,
       {
         if (!fixed[i])
           continue; // free: no reaction along it
-        auto Wi = W->sub({0})->sub({i});
-        auto dofs = fem::locate_dofs_topological({*Wi, *V_u->sub({i})}, fdim, facets);
+        auto Wi = compat::sub(*compat::sub(*W, 0), i);
+        auto dofs = compat::locate_dofs_topological(*Wi, *compat::sub(*V_u, i), fdim, facets);
         comp[i] = dofs[0];
         bc_dofs.insert(bc_dofs.end(), dofs[0].begin(), dofs[0].end());
         bcs.push_back(std::make_shared<fem::DirichletBC<double>>(g, std::move(dofs), Wi));
@@ -264,12 +265,12 @@ void Problem::create_bcs(const std::vector<DirichletSettings>& dirichlet,
         throw ConfigError(source + ": boundaries." + bc.boundary
                           + ".potential: \"exact\" needs a manufactured solution");
       scale_in_time(g, bc.potential_history);
-      auto dofs = fem::locate_dofs_topological({*W->sub({1}), *V_phi}, fdim, facets);
+      auto dofs = compat::locate_dofs_topological(*W_phi, *V_phi, fdim, facets);
       bc_dofs.insert(bc_dofs.end(), dofs[0].begin(), dofs[0].end());
       Electrode e;
       e.name = bc.boundary;
       e.dofs = dofs[0];
-      bcs.push_back(std::make_shared<fem::DirichletBC<double>>(g, std::move(dofs), W->sub({1})));
+      bcs.push_back(std::make_shared<fem::DirichletBC<double>>(g, std::move(dofs), W_phi));
       e.bc = bcs.back();
       electrodes.push_back(std::move(e));
     }
@@ -278,7 +279,7 @@ void Problem::create_bcs(const std::vector<DirichletSettings>& dirichlet,
       // a Dirichlet condition whose value, the electrode's potential, the
       // solver sets (floating.h)
       auto g = std::make_shared<fem::Function<double>>(V_phi);
-      auto dofs = fem::locate_dofs_topological({*W->sub({1}), *V_phi}, fdim, facets);
+      auto dofs = compat::locate_dofs_topological(*W_phi, *V_phi, fdim, facets);
       bc_dofs.insert(bc_dofs.end(), dofs[0].begin(), dofs[0].end());
       Electrode e;
       e.name = bc.boundary;
@@ -287,7 +288,7 @@ void Problem::create_bcs(const std::vector<DirichletSettings>& dirichlet,
       e.potential = g;
       e.charge = bc.charge;
       e.history = bc.charge_history;
-      bcs.push_back(std::make_shared<fem::DirichletBC<double>>(g, std::move(dofs), W->sub({1})));
+      bcs.push_back(std::make_shared<fem::DirichletBC<double>>(g, std::move(dofs), W_phi));
       e.bc = bcs.back();
       electrodes.push_back(std::move(e));
     }

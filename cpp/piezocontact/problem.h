@@ -128,9 +128,9 @@ public:
 
   Model model;
   MPI_Comm comm;
-  std::shared_ptr<dolfinx::mesh::Mesh> mesh;
-  std::shared_ptr<const dolfinx::fem::FunctionSpace> W;
-  std::shared_ptr<dolfinx::fem::FunctionSpace> V_u, V_phi;
+  std::shared_ptr<compat::Mesh> mesh;
+  std::shared_ptr<const compat::FunctionSpace> W;
+  std::shared_ptr<compat::FunctionSpace> V_u, V_phi;
   std::vector<std::int32_t> u_dofs, phi_dofs; ///< W-dofs of each field
   std::shared_ptr<dolfinx::fem::Function<double>> x, x_prev, u, phi;
   /// Exact fields at the current time (null if the model has none)

@@ -295,7 +295,7 @@ json Record::electrodes_json(std::span<const double> r, double k) const
 {
   const auto& x = *_problem.x->x();
   const auto potentials = _problem.electrode_potentials(
-      x.array().subspan(0, x.map()->size_local() * x.bs()));
+      x.array().subspan(0, compat::index_map(x)->size_local() * x.bs()));
   const auto charges = _problem.electrode_charges();
   const auto reaction = _problem.reaction_charges(r);
   const json& steps = _summary["steps"];

@@ -202,8 +202,14 @@ json run(Problem& problem, const RunSettings& settings, const std::filesystem::p
   std::vector<double> x_prev2(xp.begin(), xp.end()); // u_{n-2}, for the predictor
   const auto state_now = [&]
   {
-    return StepState{steps.accepted, steps.nominal_steps(), steps.t, steps.k, steps.k_last,
-                     system.k_assembled};
+    StepState s;
+    s.step = steps.accepted;
+    s.nominal = steps.nominal_steps();
+    s.t = steps.t;
+    s.k = steps.k;
+    s.k_last = steps.k_last;
+    s.k_J = system.k_assembled;
+    return s;
   };
   const auto states = [&]() -> StateViews
   { return {std::span<const double>(xp), x_prev2, system.x_assembled}; };
@@ -246,7 +252,7 @@ json run(Problem& problem, const RunSettings& settings, const std::filesystem::p
       xa[d] = xp[d] + k / steps.k_last * (xp[d] - x_prev2[d]);
     problem.hold_floating_potentials(xp); // phi^0 = phi_{n-1} there too
     for (const auto& bc : problem.bcs)
-      bc->set(xa);
+      compat::set_bc_values(*bc, xa);
     problem.x->x()->scatter_fwd();
     monitor.history.clear();
     const int f0 = system.factorisation.count;

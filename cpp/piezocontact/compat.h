@@ -1,0 +1,447 @@
+// compat.h (DRAFT, prototype for the port; see ../dolfinx09-survey.md):
+// the one place where piezocontact meets the parts of dolfinx's C++ API that
+// changed between 0.5.2 (Debian 12) and 0.9.0 (Debian 13). Everything else in
+// cpp/ spells dolfinx the same way on both. Compiled and run against both
+// versions by proto.cpp.
+#pragma once
+
+#include <dolfinx/common/version.h>
+
+#include <algorithm>
+#include <array>
+#include <basix/finite-element.h>
+#include <cstdint>
+#include <dolfinx/fem/Constant.h>
+#include <dolfinx/fem/CoordinateElement.h>
+#include <dolfinx/fem/DirichletBC.h>
+#include <dolfinx/fem/Expression.h>
+#include <dolfinx/fem/Form.h>
+#include <dolfinx/fem/Function.h>
+#include <dolfinx/fem/FunctionSpace.h>
+#include <dolfinx/fem/petsc.h>
+#include <dolfinx/fem/sparsitybuild.h>
+#include <dolfinx/fem/utils.h>
+#include <dolfinx/geometry/BoundingBoxTree.h>
+#include <dolfinx/io/XDMFFile.h>
+#include <dolfinx/la/SparsityPattern.h>
+#include <dolfinx/mesh/Mesh.h>
+#include <dolfinx/mesh/MeshTags.h>
+#include <dolfinx/mesh/generation.h>
+#include <dolfinx/mesh/utils.h>
+#include <map>
+#include <memory>
+#include <numeric>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+// Only two versions are targets: 0.5.2 and >= 0.9 (0.6-0.8 untested)
+#if DOLFINX_VERSION_MAJOR > 0 || DOLFINX_VERSION_MINOR >= 9
+#define PIEZO_DOLFINX_09 1
+#include <spdlog/spdlog.h>
+#else
+#define PIEZO_DOLFINX_09 0
+#include <dolfinx/common/loguru.hpp>
+#include <xtensor/xtensor.hpp>
+#endif
+
+namespace piezocontact::compat
+{
+namespace dfx = dolfinx;
+
+// ---- Types: templated on the geometry type since 0.7 ----------------------
+#if PIEZO_DOLFINX_09
+using Mesh = dfx::mesh::Mesh<double>;
+using FunctionSpace = dfx::fem::FunctionSpace<double>;
+using CoordinateElement = dfx::fem::CoordinateElement<double>;
+#else
+using Mesh = dfx::mesh::Mesh;
+using FunctionSpace = dfx::fem::FunctionSpace;
+using CoordinateElement = dfx::fem::CoordinateElement;
+#endif
+using Function = dfx::fem::Function<double>;
+using Constant = dfx::fem::Constant<double>;
+using Form = dfx::fem::Form<double>;
+using Expression = dfx::fem::Expression<double>;
+using DirichletBC = dfx::fem::DirichletBC<double>;
+using MeshTags = dfx::mesh::MeshTags<std::int32_t>;
+using BCList = std::vector<std::shared_ptr<const DirichletBC>>;
+
+// ---- Topology: a shared_ptr since 0.6 --------------------------------------
+inline const dfx::mesh::Topology& topology(const Mesh& m)
+{
+#if PIEZO_DOLFINX_09
+  return *m.topology();
+#else
+  return m.topology();
+#endif
+}
+inline dfx::mesh::Topology& topology_mutable(const Mesh& m)
+{
+#if PIEZO_DOLFINX_09
+  return *m.topology_mutable();
+#else
+  return m.topology_mutable();
+#endif
+}
+
+/// Geometry nodes of cell c (an AdjacencyList in 0.5, an mdspan in 0.9)
+inline std::span<const std::int32_t> cell_nodes(const Mesh& m, std::int32_t c)
+{
+#if PIEZO_DOLFINX_09
+  auto dofmap = m.geometry().dofmap();
+  return {dofmap.data_handle() + c * dofmap.extent(1), dofmap.extent(1)};
+#else
+  return m.geometry().dofmap().links(c);
+#endif
+}
+
+/// Bounding-box tree of the cells, owned and ghost (0.9.0's (mesh, tdim)
+/// constructor does not compile: it passes topology_mutable()'s shared_ptr
+/// as a reference)
+#if PIEZO_DOLFINX_09
+using BoundingBoxTree = dfx::geometry::BoundingBoxTree<double>;
+#else
+using BoundingBoxTree = dfx::geometry::BoundingBoxTree;
+#endif
+inline BoundingBoxTree cell_tree(const Mesh& m)
+{
+  const int tdim = topology(m).dim();
+#if PIEZO_DOLFINX_09
+  const auto cells = m.topology()->index_map(tdim);
+  std::vector<std::int32_t> all(cells->size_local() + cells->num_ghosts());
+  std::iota(all.begin(), all.end(), 0);
+  return BoundingBoxTree(m, tdim, all);
+#else
+  return BoundingBoxTree(m, tdim);
+#endif
+}
+
+/// The index map of a vector (Vector::map() became index_map())
+template <typename V>
+auto index_map(const V& v)
+{
+#if PIEZO_DOLFINX_09
+  return v.index_map();
+#else
+  return v.map();
+#endif
+}
+
+// ---- Meshes -----------------------------------------------------------------
+// 0.9: sizes are int64, the ghost mode moved into the partitioner (the
+// default partitioner does NOT ghost: pass shared_facet explicitly)
+inline Mesh create_rectangle(MPI_Comm comm, std::array<std::array<double, 2>, 2> p,
+                             std::array<std::size_t, 2> n, dfx::mesh::DiagonalType diagonal)
+{
+#if PIEZO_DOLFINX_09
+  return dfx::mesh::create_rectangle<double>(
+      comm, p, {std::int64_t(n[0]), std::int64_t(n[1])}, dfx::mesh::CellType::triangle,
+      dfx::mesh::create_cell_partitioner(dfx::mesh::GhostMode::shared_facet), diagonal);
+#else
+  return dfx::mesh::create_rectangle(comm, p, n, dfx::mesh::CellType::triangle,
+                                     dfx::mesh::GhostMode::shared_facet, diagonal);
+#endif
+}
+
+inline Mesh create_box(MPI_Comm comm, std::array<std::array<double, 3>, 2> p,
+                       std::array<std::size_t, 3> n)
+{
+#if PIEZO_DOLFINX_09
+  return dfx::mesh::create_box<double>(
+      comm, p, {std::int64_t(n[0]), std::int64_t(n[1]), std::int64_t(n[2])},
+      dfx::mesh::CellType::tetrahedron,
+      dfx::mesh::create_cell_partitioner(dfx::mesh::GhostMode::shared_facet));
+#else
+  return dfx::mesh::create_box(comm, p, n, dfx::mesh::CellType::tetrahedron,
+                               dfx::mesh::GhostMode::shared_facet);
+#endif
+}
+
+/// An affine mesh "name" of an XDMF file, ghosted by facet
+inline Mesh read_mesh(dfx::io::XDMFFile& f, dfx::mesh::CellType cell, const std::string& name)
+{
+  return f.read_mesh(CoordinateElement(cell, 1), dfx::mesh::GhostMode::shared_facet, name);
+}
+
+/// (indices, values) of the MeshTags "name" of an XDMF file
+inline std::pair<std::vector<std::int32_t>, std::vector<std::int32_t>>
+read_meshtags(dfx::io::XDMFFile& f, std::shared_ptr<const Mesh> mesh, const std::string& name)
+{
+#if PIEZO_DOLFINX_09
+  const auto tags = f.read_meshtags(*mesh, name);
+#else
+  const auto tags = f.read_meshtags(mesh, name);
+#endif
+  return {{tags.indices().begin(), tags.indices().end()},
+          {tags.values().begin(), tags.values().end()}};
+}
+
+/// MeshTags hold the topology since 0.6 (the mesh before)
+inline std::shared_ptr<MeshTags> make_meshtags(std::shared_ptr<const Mesh> mesh, int dim,
+                                               std::vector<std::int32_t> indices,
+                                               std::vector<std::int32_t> values)
+{
+#if PIEZO_DOLFINX_09
+  return std::make_shared<MeshTags>(mesh->topology(), dim, std::move(indices),
+                                    std::move(values));
+#else
+  return std::make_shared<MeshTags>(mesh, dim, std::move(indices), std::move(values));
+#endif
+}
+
+/// Boundary facets whose vertices all satisfy on(x, y, z) (the marker
+/// takes an xtensor in 0.5, an mdspan in 0.9)
+template <typename P>
+std::vector<std::int32_t> locate_boundary_facets(const Mesh& mesh, P on)
+{
+  const int fdim = topology(mesh).dim() - 1;
+#if PIEZO_DOLFINX_09
+  return dfx::mesh::locate_entities_boundary(
+      mesh, fdim,
+      [on](auto X)
+      {
+        std::vector<std::int8_t> marked(X.extent(1));
+        for (std::size_t i = 0; i < X.extent(1); ++i)
+          marked[i] = on(X(0, i), X(1, i), X(2, i));
+        return marked;
+      });
+#else
+  return dfx::mesh::locate_entities_boundary(
+      mesh, fdim,
+      [on](const xt::xtensor<double, 2>& X)
+      {
+        xt::xtensor<bool, 1> marked(std::array<std::size_t, 1>{X.shape(1)});
+        for (std::size_t i = 0; i < X.shape(1); ++i)
+          marked(i) = on(X(0, i), X(1, i), X(2, i));
+        return marked;
+      });
+#endif
+}
+
+// ---- Function spaces ----------------------------------------------------------
+/// Sub-space i (FunctionSpace::sub returns a value since 0.7, a shared_ptr in 0.5)
+inline std::shared_ptr<const FunctionSpace> sub(const FunctionSpace& V, int i)
+{
+#if PIEZO_DOLFINX_09
+  return std::make_shared<const FunctionSpace>(V.sub({i}));
+#else
+  return V.sub({i});
+#endif
+}
+
+// The mixed P1^d x P1 space of x = (u, phi). ffcx 0.9 generates no
+// ufcx_function_space (no functionspace_form_* helpers): the space is built
+// from basix the way dolfinx.fem.functionspace(basix.ufl.mixed_element(...))
+// does. Its forms' finite_element_hashes are 0 for a mixed space, so
+// create_form does not compare elements.
+#if PIEZO_DOLFINX_09
+using UfcxSpaceFactory = std::nullptr_t;
+#define PIEZO_UFCX_SPACE(factory) nullptr
+#else
+using UfcxSpaceFactory = ufcx_function_space* (*)(const char*);
+#define PIEZO_UFCX_SPACE(factory) factory
+#endif
+inline std::shared_ptr<FunctionSpace> mixed_p1_space(std::shared_ptr<Mesh> mesh,
+                                                     [[maybe_unused]] UfcxSpaceFactory factory)
+{
+#if PIEZO_DOLFINX_09
+  namespace be = basix::element;
+  const int gdim = mesh->geometry().dim();
+  const auto cell = dfx::mesh::cell_type_to_basix_type(mesh->topology()->cell_type());
+  const auto p1 = basix::create_element<double>(be::family::P, cell, 1, be::lagrange_variant::unset,
+                                                be::dpc_variant::unset, false);
+  using Element = dfx::fem::FiniteElement<double>;
+  auto e = std::make_shared<const Element>(std::vector<std::shared_ptr<const Element>>{
+      std::make_shared<const Element>(p1, gdim), std::make_shared<const Element>(p1, 1)});
+  auto dofmap = std::make_shared<const dfx::fem::DofMap>(
+      dfx::fem::create_dofmap(mesh->comm(), dfx::fem::create_element_dof_layout(*e),
+                              *mesh->topology_mutable(), nullptr, nullptr));
+  return std::make_shared<FunctionSpace>(mesh, e, dofmap,
+                                         std::vector<std::size_t>{std::size_t(gdim + 1)});
+#else
+  return std::make_shared<FunctionSpace>(dfx::fem::create_functionspace(factory, "x", mesh));
+#endif
+}
+
+/// Cell-wise constant (DG0) space with `size` components (size > 1)
+inline std::shared_ptr<FunctionSpace> dg0_space(std::shared_ptr<Mesh> mesh, int size)
+{
+  namespace be = basix::element;
+  const auto cell = dfx::mesh::cell_type_to_basix_type(topology(*mesh).cell_type());
+#if PIEZO_DOLFINX_09
+  const auto dg0 = basix::create_element<double>(be::family::P, cell, 0,
+                                                 be::lagrange_variant::unset,
+                                                 be::dpc_variant::unset, true);
+  return std::make_shared<FunctionSpace>(
+      dfx::fem::create_functionspace(mesh, dg0, {std::size_t(size)}));
+#else
+  const auto dg0 = basix::create_element(be::family::P, cell, 0, be::lagrange_variant::unset,
+                                         be::dpc_variant::unset, true);
+  return std::make_shared<FunctionSpace>(dfx::fem::create_functionspace(mesh, dg0, size));
+#endif
+}
+
+// ---- Dirichlet conditions -------------------------------------------------------
+/// Dofs of V0 (a sub-space) and V1 (its collapsed space) on `entities`
+/// (0.9 takes the topology and the two dofmaps)
+inline std::array<std::vector<std::int32_t>, 2>
+locate_dofs_topological(const FunctionSpace& V0, const FunctionSpace& V1, int dim,
+                        std::span<const std::int32_t> entities)
+{
+#if PIEZO_DOLFINX_09
+  return dfx::fem::locate_dofs_topological(*V0.mesh()->topology_mutable(),
+                                           {*V0.dofmap(), *V1.dofmap()}, dim, entities);
+#else
+  return dfx::fem::locate_dofs_topological({V0, V1}, dim, entities);
+#endif
+}
+
+/// x[dof] = g at the condition's dofs
+inline void set_bc_values(const DirichletBC& bc, std::span<double> x)
+{
+#if PIEZO_DOLFINX_09
+  bc.set(x, std::nullopt);
+#else
+  bc.set(x);
+#endif
+}
+
+// ---- Forms and expressions ---------------------------------------------------------
+using Coefficients = std::map<std::string, std::shared_ptr<const Function>>;
+using Constants = std::map<std::string, std::shared_ptr<const Constant>>;
+
+/// A form whose integrals marked 1 (dx(1), ds(1)) run over `entities` (cells
+/// or facets, local indices) and whose unmarked integrals run everywhere.
+/// `entities` null: no marked integral is integrated. 0.5 took MeshTags; 0.9
+/// takes (id, integration entities), (cell, local facet) pairs for facets.
+inline std::shared_ptr<const Form>
+create_form(const ufcx_form& f, const std::vector<std::shared_ptr<const FunctionSpace>>& spaces,
+            const Coefficients& coefficients, const Constants& constants,
+            dfx::fem::IntegralType type, const std::vector<std::int32_t>* entities,
+            std::shared_ptr<const Mesh> mesh)
+{
+  const int tdim = topology(*mesh).dim();
+  const int dim = type == dfx::fem::IntegralType::cell ? tdim : tdim - 1;
+  std::vector<std::int32_t> piece;
+  if (entities) // sorted, unique (MeshTags requires it; assembly order is then fixed)
+  {
+    piece = *entities;
+    std::sort(piece.begin(), piece.end());
+    piece.erase(std::unique(piece.begin(), piece.end()), piece.end());
+  }
+#if PIEZO_DOLFINX_09
+  std::map<dfx::fem::IntegralType,
+           std::vector<std::pair<std::int32_t, std::span<const std::int32_t>>>>
+      subdomains;
+  std::vector<std::int32_t> domain;
+  if (entities)
+  {
+    if (dim != tdim)
+    {
+      mesh->topology_mutable()->create_connectivity(dim, tdim);
+      mesh->topology_mutable()->create_connectivity(tdim, dim);
+    }
+    domain = dfx::fem::compute_integration_domains(type, *mesh->topology(), piece, dim);
+    subdomains[type] = {{1, std::span<const std::int32_t>(domain)}};
+  }
+  return std::make_shared<const Form>(dfx::fem::create_form<double>(
+      f, spaces, coefficients, constants, subdomains, {}, mesh));
+#else
+  std::shared_ptr<MeshTags> tags;
+  if (entities)
+    tags = make_meshtags(mesh, dim, piece, std::vector<std::int32_t>(piece.size(), 1));
+  return std::make_shared<const Form>(dfx::fem::create_form<double>(
+      f, spaces, coefficients, constants, {{type, tags.get()}}, mesh));
+#endif
+}
+
+/// 0.9 drops the mesh argument (an Expression has no mesh; interpolation
+/// uses the target's)
+inline std::shared_ptr<const Expression>
+create_expression(const ufcx_expression& e, const Coefficients& coefficients,
+                  const Constants& constants, [[maybe_unused]] std::shared_ptr<const Mesh> mesh)
+{
+#if PIEZO_DOLFINX_09
+  return std::make_shared<const Expression>(
+      dfx::fem::create_expression<double>(e, coefficients, constants));
+#else
+  return std::make_shared<const Expression>(
+      dfx::fem::create_expression<double>(e, coefficients, constants, mesh));
+#endif
+}
+
+// ---- Sparsity -------------------------------------------------------------------
+/// Add the cell and exterior-facet integrals of a bilinear form on V x V
+/// (0.9: one cells() call for both, facets given as (cell, local facet))
+inline void add_sparsity(dfx::la::SparsityPattern& pattern, const Form& a,
+                         const dfx::fem::DofMap& dofmap)
+{
+  using dfx::fem::IntegralType;
+  if (!a.integral_ids(IntegralType::interior_facet).empty())
+    throw std::runtime_error("interior-facet terms are not supported by the Jacobian's sparsity");
+#if PIEZO_DOLFINX_09
+  for (int id : a.integral_ids(IntegralType::cell))
+  {
+    const auto cells = a.domain(IntegralType::cell, id);
+    dfx::fem::sparsitybuild::cells(pattern, {cells, cells}, {{dofmap, dofmap}});
+  }
+  for (int id : a.integral_ids(IntegralType::exterior_facet))
+  {
+    const auto pairs = a.domain(IntegralType::exterior_facet, id);
+    std::vector<std::int32_t> cells;
+    for (std::size_t i = 0; i < pairs.size(); i += 2)
+      cells.push_back(pairs[i]);
+    dfx::fem::sparsitybuild::cells(pattern, {cells, cells}, {{dofmap, dofmap}});
+  }
+#else
+  for (int id : a.integral_ids(IntegralType::cell))
+    dfx::fem::sparsitybuild::cells(pattern, a.cell_domains(id), {{dofmap, dofmap}});
+  for (int id : a.integral_ids(IntegralType::exterior_facet))
+    dfx::fem::sparsitybuild::exterior_facets(pattern, a.exterior_facet_domains(id),
+                                             {{dofmap, dofmap}});
+#endif
+}
+
+inline void finalize(dfx::la::SparsityPattern& pattern)
+{
+#if PIEZO_DOLFINX_09
+  pattern.finalize();
+#else
+  pattern.assemble();
+#endif
+}
+
+// ---- PETSc assembly --------------------------------------------------------------
+/// b -= alpha A (g - x0) for one bilinear form (0.9 cannot deduce the
+/// geometry type: it is explicit)
+inline void apply_lifting(Vec b, const std::shared_ptr<const Form>& a, const BCList& bcs, Vec x0,
+                          double alpha)
+{
+#if PIEZO_DOLFINX_09
+  dfx::fem::petsc::apply_lifting<double>(b, {a}, {bcs}, {x0}, alpha);
+#else
+  dfx::fem::petsc::apply_lifting(b, {a}, {bcs}, {x0}, alpha);
+#endif
+}
+
+inline void set_bc(Vec b, const BCList& bcs, Vec x0, double alpha)
+{
+#if PIEZO_DOLFINX_09
+  dfx::fem::petsc::set_bc<double>(b, bcs, x0, alpha);
+#else
+  dfx::fem::petsc::set_bc(b, bcs, x0, alpha);
+#endif
+}
+
+// ---- Logging: loguru (0.5) became spdlog (0.6+) ------------------------------------
+inline void log_errors_only()
+{
+#if PIEZO_DOLFINX_09
+  spdlog::set_level(spdlog::level::err);
+#else
+  loguru::g_stderr_verbosity = loguru::Verbosity_ERROR;
+#endif
+}
+} // namespace piezocontact::compat
