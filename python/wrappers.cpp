@@ -1,8 +1,10 @@
 // piezocontact.cpp: Python bindings of libpiezocontact. dolfinx objects
-// cross as dolfinx's own pybind11 types (its Python module registers them);
-// JSON crosses as text (the Python package loads and dumps it).
+// cross as dolfinx's own types (its Python module registers them); JSON
+// crosses as text (the Python package loads and dumps it). Written once for
+// pybind11 (dolfinx 0.5) and nanobind (0.9): see bindings.h.
+#include "bindings.h"
+
 #include <caster_mpi.h>
-#include <caster_petsc.h>
 #include <dolfinx/fem/DirichletBC.h>
 #include <piezocontact/config.h>
 #include <piezocontact/diagnostics.h>
@@ -10,14 +12,9 @@
 #include <piezocontact/mesh.h>
 #include <piezocontact/output.h>
 #include <piezocontact/record.h>
-#include <pybind11/functional.h>
-#include <pybind11/numpy.h>
-#include <pybind11/pybind11.h>
-#include <pybind11/stl.h>
-#include <pybind11/stl/filesystem.h>
 
-namespace py = pybind11;
 using namespace piezocontact;
+using namespace piezocontact::bindings;
 using dolfinx_wrappers::MPICommWrapper;
 
 namespace
@@ -40,9 +37,9 @@ py::handle config_error, newton_failure, output_error, interrupted;
 /// An engine written in Python raises the library's exceptions by their
 /// Python classes; the driver gets them back as C++ exceptions
 /// (Interrupted(signum, steps, t) from its arguments)
-[[noreturn]] void rethrow(py::error_already_set& e)
+[[noreturn]] void rethrow(python_error& e)
 {
-  const std::string what = py::str(e.value());
+  const std::string what = text(e.value());
   if (e.matches(config_error))
     throw ConfigError(what);
   if (e.matches(newton_failure))
@@ -51,8 +48,9 @@ py::handle config_error, newton_failure, output_error, interrupted;
     throw OutputError(what);
   if (e.matches(interrupted))
   {
-    const py::tuple args = e.value().attr("args");
-    throw Interrupted(args[0].cast<int>(), args[1].cast<int>(), args[2].cast<double>());
+    const py::object value = e.value().attr("args");
+    const auto args = py::cast<py::tuple>(value);
+    throw Interrupted(py::cast<int>(args[0]), py::cast<int>(args[1]), py::cast<double>(args[2]));
   }
   throw;
 }
@@ -68,93 +66,89 @@ Engine engine(const std::optional<PyEngine>& e)
     {
       return json::parse((*e)(&problem, settings, out.string(), summary.dump(), resume, progress));
     }
-    catch (py::error_already_set& err)
+    catch (python_error& err)
     {
       rethrow(err);
     }
   };
 }
 
-void declare_model(py::module& m)
+void declare_model(py::module_& m)
 {
-  py::class_<NamedMesh>(m, "NamedMesh",
+  class_<NamedMesh>(m, "NamedMesh",
                         "A mesh with its named boundaries (facet tags) and regions (cell tags)")
-      .def_readonly("mesh", &NamedMesh::mesh)
-      .def_readonly("facet_tags", &NamedMesh::facet_tags)
-      .def_readonly("cell_tags", &NamedMesh::cell_tags)
-      .def_readonly("tag_of", &NamedMesh::tag_of)
-      .def_readonly("region_of", &NamedMesh::region_of)
+      .def_ro("mesh", &NamedMesh::mesh)
+      .def_ro("facet_tags", &NamedMesh::facet_tags)
+      .def_ro("cell_tags", &NamedMesh::cell_tags)
+      .def_ro("tag_of", &NamedMesh::tag_of)
+      .def_ro("region_of", &NamedMesh::region_of)
       .def("boundary_facets", &NamedMesh::boundary_facets, py::arg("name"))
       .def("region_cells", &NamedMesh::region_cells, py::arg("name"))
       .def("boundary_facets_of", &NamedMesh::boundary_facets_of, py::arg("boundary"),
            py::arg("region"));
 
-  py::class_<RegionFields>(m, "RegionFields", "The cell-wise output of one region")
+  class_<RegionFields>(m, "RegionFields", "The cell-wise output of one region")
       .def(py::init<>())
-      .def_readwrite("cells", &RegionFields::cells)
-      .def_readwrite("electric_displacement", &RegionFields::electric_displacement)
-      .def_readwrite("stress", &RegionFields::stress);
+      .def_rw("cells", &RegionFields::cells)
+      .def_rw("electric_displacement", &RegionFields::electric_displacement)
+      .def_rw("stress", &RegionFields::stress);
 
-  py::class_<Model>(m, "Model", "The dolfinx objects of a run (model.h)")
+  class_<Model>(m, "Model", "The dolfinx objects of a run (model.h)")
       .def(py::init<>())
-      .def_readwrite("mesh", &Model::mesh)
-      .def_readwrite("W", &Model::W)
-      .def_readwrite("x", &Model::x)
-      .def_readwrite("x_prev", &Model::x_prev)
-      .def_readwrite("constants", &Model::constants)
-      .def_readwrite("materials", &Model::materials)
-      .def_readwrite("loads", &Model::loads)
-      .def_readwrite("contact_facets", &Model::contact_facets)
-      .def_readwrite("F", &Model::F)
-      .def_readwrite("J", &Model::J)
-      .def_readwrite("J_contact", &Model::J_contact)
-      .def_readwrite("contact_force", &Model::contact_force)
-      .def_readwrite("fields", &Model::fields)
-      .def_readwrite("u_exact", &Model::u_exact)
-      .def_readwrite("phi_exact", &Model::phi_exact)
-      .def_readwrite("squared_errors", &Model::squared_errors)
-      .def_readwrite("boundary_measures", &Model::boundary_measures)
-      .def_readwrite("electrode_charge", &Model::electrode_charge)
-      .def_readwrite("contact_pressure_load", &Model::contact_pressure_load)
-      .def_readwrite("contact_nodal_area", &Model::contact_nodal_area)
-      .def_readwrite("L", &Model::L);
+      .def_rw("mesh", &Model::mesh)
+      .def_rw("W", &Model::W)
+      .def_rw("x", &Model::x)
+      .def_rw("x_prev", &Model::x_prev)
+      .def_rw("constants", &Model::constants)
+      .def_rw("materials", &Model::materials)
+      .def_rw("loads", &Model::loads)
+      .def_rw("contact_facets", &Model::contact_facets)
+      .def_rw("F", &Model::F)
+      .def_rw("J", &Model::J)
+      .def_rw("J_contact", &Model::J_contact)
+      .def_rw("contact_force", &Model::contact_force)
+      .def_rw("fields", &Model::fields)
+      .def_rw("u_exact", &Model::u_exact)
+      .def_rw("phi_exact", &Model::phi_exact)
+      .def_rw("squared_errors", &Model::squared_errors)
+      .def_rw("boundary_measures", &Model::boundary_measures)
+      .def_rw("electrode_charge", &Model::electrode_charge)
+      .def_rw("contact_pressure_load", &Model::contact_pressure_load)
+      .def_rw("contact_nodal_area", &Model::contact_nodal_area)
+      .def_rw("L", &Model::L);
 }
 
-void declare_settings(py::module& m)
+void declare_settings(py::module_& m)
 {
-  py::class_<NewtonSettings>(m, "NewtonSettings")
-      .def_readonly("rtol", &NewtonSettings::rtol)
-      .def_readonly("atol", &NewtonSettings::atol)
-      .def_readonly("max_iterations", &NewtonSettings::max_iterations)
-      .def_readonly("max_step_halvings", &NewtonSettings::max_step_halvings);
-  py::class_<OutputSettings>(m, "OutputSettings")
-      .def_readonly("xdmf", &OutputSettings::xdmf)
-      .def_readonly("nodal", &OutputSettings::nodal);
-  py::class_<RunSettings>(m, "RunSettings")
-      .def_readonly("T", &RunSettings::T)
-      .def_readonly("steps", &RunSettings::steps)
-      .def_readonly("newton", &RunSettings::newton)
-      .def_readonly("reuse_factorisation", &RunSettings::reuse_factorisation)
-      .def_readonly("petsc_options", &RunSettings::petsc_options)
-      .def_readonly("probes", &RunSettings::probes)
-      .def_readonly("output", &RunSettings::output);
+  class_<NewtonSettings>(m, "NewtonSettings")
+      .def_ro("rtol", &NewtonSettings::rtol)
+      .def_ro("atol", &NewtonSettings::atol)
+      .def_ro("max_iterations", &NewtonSettings::max_iterations)
+      .def_ro("max_step_halvings", &NewtonSettings::max_step_halvings);
+  class_<OutputSettings>(m, "OutputSettings")
+      .def_ro("xdmf", &OutputSettings::xdmf)
+      .def_ro("nodal", &OutputSettings::nodal);
+  class_<RunSettings>(m, "RunSettings")
+      .def_ro("T", &RunSettings::T)
+      .def_ro("steps", &RunSettings::steps)
+      .def_ro("newton", &RunSettings::newton)
+      .def_ro("reuse_factorisation", &RunSettings::reuse_factorisation)
+      .def_ro("petsc_options", &RunSettings::petsc_options)
+      .def_ro("probes", &RunSettings::probes)
+      .def_ro("output", &RunSettings::output);
 }
 
-using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
-
-std::span<const double> view(const Array& a) { return {a.data(), std::size_t(a.size())}; }
-
-void declare_problem(py::module& m)
+void declare_problem(py::module_& m)
 {
-  py::class_<Problem>(m, "Problem", "A Model with its Dirichlet conditions (problem.h)")
-      .def_property_readonly("bcs",
+  class_<Problem>(m, "Problem", "A Model with its Dirichlet conditions (problem.h)")
+      .def_prop_ro("bcs",
                              [](const Problem& p)
                              {
                                std::vector<std::shared_ptr<const dolfinx::fem::DirichletBC<double>>>
                                    out(p.bcs.begin(), p.bcs.end());
                                return out;
                              })
-      .def_property_readonly(
+      .def_prop_ro(
           "fixed_bcs",
           [](const Problem& p)
           {
@@ -166,7 +160,7 @@ void declare_problem(py::module& m)
             return out;
           },
           "The Dirichlet conditions but those of floating electrodes")
-      .def_readonly("electrodes", &Problem::electrodes)
+      .def_ro("electrodes", &Problem::electrodes)
       .def("target_charges", &Problem::target_charges)
       .def(
           "reaction_charges",
@@ -174,10 +168,10 @@ void declare_problem(py::module& m)
           py::arg("r"), "Charge on each electrode: minus the sum of r (owned entries of an "
                         "unconstrained residual) over its dofs")
       .def("electrode_charges", &Problem::electrode_charges)
-      .def_readonly("u_dofs", &Problem::u_dofs)
-      .def_readonly("phi_dofs", &Problem::phi_dofs)
-      .def_readonly("bc_dofs", &Problem::bc_dofs)
-      .def_readonly("clamped_dofs", &Problem::clamped_dofs)
+      .def_ro("u_dofs", &Problem::u_dofs)
+      .def_ro("phi_dofs", &Problem::phi_dofs)
+      .def_ro("bc_dofs", &Problem::bc_dofs)
+      .def_ro("clamped_dofs", &Problem::clamped_dofs)
       .def("set_time", &Problem::set_time, py::arg("t"), py::arg("k"))
       .def("update_fields", &Problem::update_fields)
       .def("errors", &Problem::errors)
@@ -185,13 +179,13 @@ void declare_problem(py::module& m)
           "force_balance",
           [](const Problem& p, const Array& r) { return p.force_balance(view(r)); },
           py::arg("r"), "The balance of forces in a residual (owned entries, before its BC rows)");
-  py::class_<Electrode>(m, "Electrode", "A boundary with a prescribed or floating potential")
-      .def_readonly("name", &Electrode::name)
-      .def_readonly("dofs", &Electrode::dofs)
-      .def_readonly("floating", &Electrode::floating);
-  py::class_<ForceBalance>(m, "ForceBalance", "What a residual says about equilibrium")
-      .def_readonly("unbalanced", &ForceBalance::unbalanced)
-      .def_readonly("supported", &ForceBalance::supported);
+  class_<Electrode>(m, "Electrode", "A boundary with a prescribed or floating potential")
+      .def_ro("name", &Electrode::name)
+      .def_ro("dofs", &Electrode::dofs)
+      .def_ro("floating", &Electrode::floating);
+  class_<ForceBalance>(m, "ForceBalance", "What a residual says about equilibrium")
+      .def_ro("unbalanced", &ForceBalance::unbalanced)
+      .def_ro("supported", &ForceBalance::supported);
   m.def("contact_force", &contact_force, py::arg("problem"),
         "Resultant force of the foundation on the body at the current x");
   m.def("force_imbalance",
@@ -212,37 +206,36 @@ auto raising_interrupted(F&& f)
   }
   catch (const Interrupted& e)
   {
-    PyErr_SetObject(interrupted.ptr(),
-                    py::make_tuple(e.signum, e.steps, e.t).ptr());
-    throw py::error_already_set();
+    PyErr_SetObject(interrupted.ptr(), py::make_tuple(e.signum, e.steps, e.t).ptr());
+    throw python_error();
   }
 }
 
-void declare_record(py::module& m)
+void declare_record(py::module_& m)
 {
-  py::class_<FieldNorms>(m, "FieldNorms", "Norms of one field's residual")
-      .def(py::init([](double residual, double scaled, double relative)
+  class_<FieldNorms>(m, "FieldNorms", "Norms of one field's residual")
+      .def(constructor([](double residual, double scaled, double relative)
                     { return FieldNorms{residual, scaled, relative}; }),
            py::arg("residual"), py::arg("scaled_residual"), py::arg("relative"))
-      .def_readonly("residual", &FieldNorms::residual)
-      .def_readonly("scaled_residual", &FieldNorms::scaled_residual)
-      .def_readonly("relative", &FieldNorms::relative);
-  py::class_<StepState>(m, "StepState", "The step control after an accepted step")
-      .def(py::init(
+      .def_ro("residual", &FieldNorms::residual)
+      .def_ro("scaled_residual", &FieldNorms::scaled_residual)
+      .def_ro("relative", &FieldNorms::relative);
+  class_<StepState>(m, "StepState", "The step control after an accepted step")
+      .def(constructor(
                [](int step, int nominal, double t, double k, double k_last, double k_J)
                { return StepState{step, nominal, t, k, k_last, k_J}; }),
            py::arg("step"), py::arg("nominal"), py::arg("t"), py::arg("k"), py::arg("k_last"),
            py::arg("k_J"));
-  py::class_<SolveReport>(m, "SolveReport", "How an accepted step was solved")
+  class_<SolveReport>(m, "SolveReport", "How an accepted step was solved")
       .def(py::init<>())
-      .def_readwrite("t", &SolveReport::t)
-      .def_readwrite("k", &SolveReport::k)
-      .def_readwrite("newton_iterations", &SolveReport::newton_iterations)
-      .def_readwrite("factorisations", &SolveReport::factorisations)
-      .def_readwrite("krylov_iterations", &SolveReport::krylov_iterations)
-      .def_readwrite("history", &SolveReport::history);
-  py::class_<Record>(m, "Record", "The outputs and summary of a run (record.h)")
-      .def(py::init(
+      .def_rw("t", &SolveReport::t)
+      .def_rw("k", &SolveReport::k)
+      .def_rw("newton_iterations", &SolveReport::newton_iterations)
+      .def_rw("factorisations", &SolveReport::factorisations)
+      .def_rw("krylov_iterations", &SolveReport::krylov_iterations)
+      .def_rw("history", &SolveReport::history);
+  class_<Record>(m, "Record", "The outputs and summary of a run (record.h)")
+      .def(constructor(
                [](Problem* problem, const RunSettings& settings, const std::string& dir,
                   const std::string& summary, bool progress,
                   const std::optional<std::function<void(int, const std::string&)>>& observer)
@@ -250,11 +243,11 @@ void declare_record(py::module& m)
                  StepObserver on_step = nullptr;
                  if (observer)
                    on_step = [observer](int n, const json& step) { (*observer)(n, step.dump()); };
-                 return std::make_unique<Record>(*problem, settings, dir, json::parse(summary),
-                                                 false, progress, on_step);
+                 return new Record(*problem, settings, dir, json::parse(summary), false,
+                                   progress, on_step);
                }),
            py::arg("problem"), py::arg("settings"), py::arg("dir"), py::arg("summary"),
-           py::arg("progress"), py::arg("observer") = py::none(), py::keep_alive<1, 2>())
+           py::arg("progress"), py::arg("observer") = py::none(), keep_first_argument_alive())
       .def(
           "begin",
           [](Record& r, const StepState& s, const Array& x_n, const Array& x_prev,
@@ -275,20 +268,20 @@ void declare_record(py::module& m)
       .def("interrupt",
            [](Record& r, int signum, const std::string& timing)
            { raising_interrupted([&] { r.interrupt(signum, json::parse(timing)); }); })
-      .def_property_readonly("summary", [](const Record& r) { return r.summary().dump(); });
+      .def_prop_ro("summary", [](const Record& r) { return r.summary().dump(); });
   m.def(
       "agreed_interrupt", [](MPICommWrapper comm) { return agreed_interrupt(comm.get()); },
       "The signal received on any rank, 0 if none (collective)");
 }
 } // namespace
 
-PYBIND11_MODULE(cpp, m)
+PIEZO_MODULE(cpp, m)
 {
   m.doc() = "libpiezocontact: the C++ core of piezocontact";
-  config_error = py::register_exception<ConfigError>(m, "ConfigError", PyExc_ValueError);
-  newton_failure = py::register_exception<NewtonFailure>(m, "NewtonFailure", PyExc_RuntimeError);
-  output_error = py::register_exception<OutputError>(m, "OutputError", PyExc_OSError);
-  interrupted = py::register_exception<Interrupted>(m, "Interrupted", PyExc_KeyboardInterrupt);
+  config_error = register_exception<ConfigError>(m, "ConfigError", PyExc_ValueError);
+  newton_failure = register_exception<NewtonFailure>(m, "NewtonFailure", PyExc_RuntimeError);
+  output_error = register_exception<OutputError>(m, "OutputError", PyExc_OSError);
+  interrupted = register_exception<Interrupted>(m, "Interrupted", PyExc_KeyboardInterrupt);
   m.attr("exit_config_error") = exit_config_error;
   m.attr("exit_run_error") = exit_run_error;
   m.attr("exit_output_error") = exit_output_error;
@@ -320,7 +313,7 @@ PYBIND11_MODULE(cpp, m)
           file = *mesh_file;
         return build_mesh(json::parse(cfg), comm.get(), file, source);
       },
-      py::arg("cfg"), py::arg("comm"), py::arg("mesh_file"), py::arg("source") = "config",
+      py::arg("cfg"), py::arg("comm"), nullable("mesh_file"), py::arg("source") = "config",
       "The mesh of a validated config: the built-in square, or an XDMF file with "
       "facet tags and its NAME.boundaries.json");
   m.def(
@@ -365,7 +358,7 @@ PYBIND11_MODULE(cpp, m)
             .dump();
       },
       py::arg("cfg"), py::arg("output"), py::arg("source"), py::arg("solver"),
-      py::arg("progress"), py::arg("resume"), py::arg("comm"), py::arg("make_model"),
+      py::arg("progress"), nullable("resume"), py::arg("comm"), py::arg("make_model"),
       py::arg("engine") = py::none(), py::arg("observer") = py::none(),
       "A run from a validated config (driver.h); the summary as JSON text");
   m.def(
