@@ -1,0 +1,16 @@
+#!/usr/bin/env bash
+# Example 1 at n = 64 (64 steps) on Debian 12 (dolfinx 0.5.2) and in the
+# Debian 13 root (0.9.0): the same discrete problem, so the probes of every
+# step must agree to 1e-10 of their size. Needs both builds (scripts/test.sh
+# on each); prints the largest difference.
+#   bash scripts/compare_releases.sh [N]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+n=${1:-64}
+run=(--config demos/square.json --set "mesh.n=$n" --set "time.steps=$n"
+     --set output.xdmf=false --set output.nodal=none --quiet)
+rm -rf out/release-12 out/release-13
+build/piezo-contact "${run[@]}" --output out/release-12
+bash scripts/debian13.sh build/piezo-contact "${run[@]}" --output out/release-13
+exec /usr/bin/python3 tests/compare_summaries.py out/release-12/summary.json \
+  out/release-13/summary.json --tolerance 1e-10
