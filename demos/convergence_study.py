@@ -39,7 +39,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import ufl  # noqa: E402
-from dolfinx import fem, geometry  # noqa: E402
+from dolfinx import fem  # noqa: E402
+from piezocontact._compat import colliding_cells, functionspace  # noqa: E402
 
 from piezodemos import compare, runs  # noqa: E402
 
@@ -72,10 +73,7 @@ class Transfer:
         self.cells, self.points = {}, {}
         for name, V in fine.fields.V.items():
             pts = V.tabulate_dof_coordinates()
-            msh = coarse.fields.mesh
-            tree = geometry.BoundingBoxTree(msh, msh.topology.dim)
-            hits = geometry.compute_colliding_cells(
-                msh, geometry.compute_collisions(tree, pts), pts)
+            hits = colliding_cells(coarse.fields.mesh, pts)
             self.cells[name] = np.array([hits.links(i)[0] for i in range(len(pts))],
                                         dtype=np.int32)
             self.points[name] = pts
@@ -103,7 +101,7 @@ RADIUS = 0.25
 def region_indicators(level):
     """DG0 indicator of each region on a level's mesh (by cell midpoint)."""
     msh = level.fields.mesh
-    Q = fem.FunctionSpace(msh, ("DG", 0))
+    Q = functionspace(msh, ("DG", 0))
     mid = Q.tabulate_dof_coordinates()[:, :2]
     near = {name: np.hypot(*(mid - c).T) < RADIUS for name, c in CORNERS.items()}
     near["rest"] = ~np.logical_or.reduce(list(near.values()))

@@ -42,9 +42,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-from dolfinx import mesh as dmesh  # noqa: E402
-from dolfinx.cpp.mesh import entities_to_geometry  # noqa: E402
 from mpl_toolkits.mplot3d.art3d import Poly3DCollection  # noqa: E402
+from piezocontact import _compat as compat  # noqa: E402
 from piezodemos import compare, runs  # noqa: E402
 
 HERE = Path(__file__).resolve().parent
@@ -57,17 +56,9 @@ ROOT = HERE.parent
 # it is a few micrometres on a 10 mm beam), coloured by a nodal field; the
 # foundation is the grey plane at z = -g.
 
-def exterior_triangles(msh):
-    """Vertex indices (geometry nodes) of the exterior facets."""
-    tdim = msh.topology.dim
-    msh.topology.create_connectivity(tdim - 1, tdim)
-    facets = dmesh.exterior_facet_indices(msh.topology)
-    return entities_to_geometry(msh._mesh, tdim - 1, facets, False)  # the C++ mesh (0.5)
-
-
 def draw(state, values, label, amplification, gap, path, title):
     x = 1e3 * (state["x"] + amplification * state["u"])  # mm
-    tris = exterior_triangles(state["mesh"])
+    tris = compat.exterior_facet_geometry(state["mesh"])  # vertex indices (geometry nodes)
     colours = values[tris].mean(axis=1)
     fig = plt.figure(figsize=(9, 4.5))
     ax = fig.add_subplot(projection="3d")
@@ -102,8 +93,8 @@ def final_state(out_dir, summary):
     msh = fields.mesh
     # P1 dofs and geometry nodes follow the same cell-local order
     node_of_dof = np.empty(msh.geometry.x.shape[0], dtype=np.int64)
-    cells = msh.geometry.dofmap.array.reshape(-1, msh.topology.dim + 1)
-    node_of_dof[fields.V["phi"].dofmap.list.array.reshape(cells.shape)] = cells
+    cells = compat.geometry_dofmap(msh)
+    node_of_dof[compat.dofmap_array(fields.V["phi"])] = cells
     order = np.argsort(node_of_dof)
     return {"mesh": msh, "x": msh.geometry.x,
             "u": u.x.array.reshape(-1, 3)[order], "phi": phi.x.array[order]}

@@ -14,6 +14,27 @@ import manufactured as mms
 import piezo_forms as pf
 import ufl
 
+DIMENSION = {"triangle": 2, "tetrahedron": 3}
+
+try:  # basix >= 0.7 (dolfinx 0.9): elements are basix.ufl's, UFL has none of its own
+    import basix.ufl as basix_ufl
+except ImportError:  # basix 0.5 (dolfinx 0.5): UFL 2022's own elements
+    basix_ufl = None
+
+
+def elements(cell_name):
+    """(coordinate element, mixed element of x = (u, phi)) on a cell: P1
+    vectors (the geometry, and u) and P1^d x P1. The one definition of the
+    elements, for ffcx here and for the package's JIT (model.py)."""
+    if basix_ufl:
+        vector = basix_ufl.element("Lagrange", cell_name, 1, shape=(DIMENSION[cell_name],))
+        scalar = basix_ufl.element("Lagrange", cell_name, 1)
+        return vector, basix_ufl.mixed_element([vector, scalar])
+    cell = getattr(ufl, cell_name)  # its geometric dimension is its own
+    vector = ufl.VectorElement("Lagrange", cell, 1)
+    return vector, ufl.MixedElement([vector, ufl.FiniteElement("Lagrange", cell, 1)])
+
+
 # Reference points of the cell-wise (DG0) output: the cell midpoint, and of
 # the exact fields: the P1 nodes (the vertices)
 MIDPOINT = {"triangle": [[1 / 3, 1 / 3]], "tetrahedron": [[0.25, 0.25, 0.25]]}
@@ -23,10 +44,9 @@ VERTICES = {"triangle": [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]],
 
 def declare(cell_name, shapes):
     """Mesh, W, x, x_prev, the test and trial functions and {name: Constant}."""
-    cell = getattr(ufl, cell_name)
-    mesh = ufl.Mesh(ufl.VectorElement("Lagrange", cell, 1))
-    W = ufl.FunctionSpace(mesh, ufl.MixedElement([ufl.VectorElement("Lagrange", cell, 1),
-                                                  ufl.FiniteElement("Lagrange", cell, 1)]))
+    coordinate, mixed = elements(cell_name)
+    mesh = ufl.Mesh(coordinate)
+    W = ufl.FunctionSpace(mesh, mixed)
     objects = {"mesh": mesh, "W": W,
                "x": ufl.Coefficient(W),       # (u_n, phi_n), the unknown of the step
                "x_prev": ufl.Coefficient(W)}  # (u_{n-1}, phi_{n-1})
@@ -44,7 +64,7 @@ def _split(data, shapes):
 
 def model(cell_name):
     """The terms of the model (see piezo_forms) and its post-processing."""
-    d = {"triangle": 2, "tetrahedron": 3}[cell_name]
+    d = DIMENSION[cell_name]
     objects, data = declare(cell_name, _shapes(d))
     mesh, W, x, x_prev = (objects[k] for k in ("mesh", "W", "x", "x_prev"))
     mat = _split(data, pf.material_shapes(d))
@@ -87,7 +107,7 @@ def manufactured(cell_name):
     """The terms that differ in a manufactured-solution run, the exact
     fields at the P1 nodes (time-dependent Dirichlet data) and the squared
     errors; the rest is model()'s."""
-    d = {"triangle": 2, "tetrahedron": 3}[cell_name]
+    d = DIMENSION[cell_name]
     objects, data = declare(cell_name, {**_shapes(d), **mms.constant_shapes()})
     mesh, W, x, x_prev = (objects[k] for k in ("mesh", "W", "x", "x_prev"))
     mat = _split(data, pf.material_shapes(d))

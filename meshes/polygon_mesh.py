@@ -5,6 +5,7 @@ Each edge of the polygon belongs to a named boundary (a gmsh physical group);
 dolfinx 0.5 has no gmsh reader in C++, so this is the exchange format."""
 
 import argparse
+import importlib.util
 import json
 import sys
 from pathlib import Path
@@ -14,6 +15,18 @@ from dolfinx import io
 from dolfinx.io import gmshio
 from mpi4py import MPI
 
+
+def _load_compat():
+    """The package's _compat (what differs between dolfinx 0.5 and 0.9),
+    from this source tree: importing the package would need its bindings."""
+    path = Path(__file__).resolve().parents[1] / "python" / "piezocontact" / "_compat.py"
+    spec = importlib.util.spec_from_file_location("piezocontact_compat", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+compat = _load_compat()
 
 MAX_TRIANGLES = 5e6
 
@@ -59,7 +72,7 @@ def write_mesh(points, edge_names, size, output, comm=MPI.COMM_WORLD):
     mesh.topology.create_connectivity(1, 2)
     with io.XDMFFile(comm, str(output), "w") as xdmf:
         xdmf.write_mesh(mesh)
-        xdmf.write_meshtags(facet_tags)
+        compat.write_meshtags(xdmf, facet_tags, mesh)
     if comm.rank == 0:
         sidecar = {"boundaries": boundaries, "size": size, "points": points,
                    "edges": edge_names}

@@ -33,8 +33,9 @@ PACKAGES=(
   openmpi-bin libopenblas0
   # tests and pictures
   python3-pytest python3-matplotlib
-  # tests read the XDMF steps back
-  python3-h5py
+  # tests read the XDMF steps back; the forms-edit test copies the tracked tree
+  # (git ls-files)
+  python3-h5py git
   # benchmarks: /usr/bin/time for peak memory
   time
 )

@@ -14,6 +14,7 @@ from conftest import ENGINES, ENV, ROOT, run_solver
 from dolfinx import fem
 from mpi4py import MPI
 from piezocontact import cpp
+from piezocontact._compat import meshtags
 from piezocontact.model import python_mesh
 from piezodemos import compare, figures
 
@@ -55,7 +56,7 @@ def test_facet_tags_from_xdmf_measure_the_polygon_edges(name, tmp_path):
     subprocess.run(["/usr/bin/python3", str(script), "--size", "0.3", "--output", str(out)],
                    check=True, env=ENV, capture_output=True)
     named = cpp.build_mesh("{}", MPI.COMM_WORLD, str(out))
-    msh, tags, tag_of = python_mesh(named), named.facet_tags, named.tag_of
+    msh, tags, tag_of = python_mesh(named), meshtags(named.facet_tags), named.tag_of
     ds = ufl.Measure("ds", domain=msh, subdomain_data=tags)
     one = fem.Constant(msh, 1.0)
     expected = edge_lengths(*polygon(script))

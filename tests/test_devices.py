@@ -172,6 +172,7 @@ def box_mesh_file(path, Q):
     rotated by Q, as XDMF + sidecar (mesh.type xdmf)."""
     from dolfinx import io, mesh
     from mpi4py import MPI
+    from piezocontact._compat import write_meshtags
     msh = mesh.create_box(MPI.COMM_SELF, [[0, 0, 0], [1, 1, 0.5]], [3, 3, 2],
                           mesh.CellType.tetrahedron)
     sides = {"left": (0, 0.0), "right": (0, 1.0), "bottom": (1, 0.0), "top": (1, 1.0)}
@@ -186,7 +187,7 @@ def box_mesh_file(path, Q):
     msh.name, tags.name = "mesh", "facets"
     with io.XDMFFile(MPI.COMM_SELF, str(path), "w") as f:
         f.write_mesh(msh)
-        f.write_meshtags(tags)
+        write_meshtags(f, tags, msh)
     path.with_suffix(".boundaries.json").write_text(json.dumps(
         {"boundaries": {n: t for t, n in enumerate(sorted(sides), start=1)}}))
 

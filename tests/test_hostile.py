@@ -65,8 +65,8 @@ def test_a_process_without_cells_is_refused(solver, tmp_path):
     assert proc.returncode == 2
     errors = [line for line in proc.stderr.splitlines() if line.startswith("error")]
     assert errors == [f"error: {SQUARE}: mesh: 2 cells for 3 processes leave a process "
-                      "without a cell, which dolfinx 0.5 cannot handle: use a finer mesh or "
-                      "fewer processes"]
+                      "without a cell, which is not supported (dolfinx 0.5 cannot collapse a "
+                      "space there): use a finer mesh or fewer processes"]
 
 
 def balanced(step, load=(0.0, 10.0)):

@@ -54,8 +54,9 @@ void check_every_rank_has_cells(const NamedMesh& mesh, MPI_Comm comm, const std:
   if (fewest == 0)
     throw ConfigError(printable(source, 200) + ": mesh: " + std::to_string(cells->size_global())
                       + " cells for " + std::to_string(size)
-                      + " processes leave a process without a cell, which dolfinx 0.5 "
-                        "cannot handle: use a finer mesh or fewer processes");
+                      + " processes leave a process without a cell, which is not supported "
+                        "(dolfinx 0.5 cannot collapse a space there): use a finer mesh or "
+                        "fewer processes");
 }
 } // namespace
 

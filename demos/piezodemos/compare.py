@@ -15,6 +15,7 @@ from dolfinx import fem
 from mpi4py import MPI
 
 from piezocontact import cpp
+from piezocontact._compat import functionspace, meshtags
 from piezocontact.model import python_mesh
 
 
@@ -49,10 +50,10 @@ class FieldComparer:
     def __init__(self, cfg, mesh_file=None, comm=MPI.COMM_SELF):
         self.named = cpp.build_mesh(json.dumps(cfg), comm, mesh_file)
         self.mesh = python_mesh(self.named)
-        self.facet_tags, self.tag_of = self.named.facet_tags, self.named.tag_of
-        self.V = {"u": fem.VectorFunctionSpace(self.mesh, ("Lagrange", 1)),
-                  "phi": fem.FunctionSpace(self.mesh, ("Lagrange", 1))}
+        self.facet_tags, self.tag_of = meshtags(self.named.facet_tags), self.named.tag_of
         self.dim = self.mesh.geometry.dim
+        self.V = {"u": functionspace(self.mesh, ("Lagrange", 1, (self.dim,))),
+                  "phi": functionspace(self.mesh, ("Lagrange", 1))}
         self._order = {f: self._lexorder(V.tabulate_dof_coordinates()[:, :self.dim])
                        for f, V in self.V.items()}
 

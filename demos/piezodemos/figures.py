@@ -9,11 +9,13 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+import dolfinx.fem.petsc  # noqa: E402, F401  (0.9 does not import it with dolfinx.fem)
 import numpy as np  # noqa: E402
 import ufl  # noqa: E402
 from dolfinx import fem  # noqa: E402
 from matplotlib.tri import Triangulation  # noqa: E402
 
+from piezocontact._compat import dofmap_array, functionspace  # noqa: E402
 from piezocontact.model import model_constants, pf, set_constants  # noqa: E402
 
 from . import compare  # noqa: E402
@@ -41,8 +43,8 @@ class RunState:
         (mat,) = materials.values()  # the contactor: one material
 
         V, Vu = fields.V["phi"], fields.V["u"]
-        cells = V.dofmap.list.array.reshape(-1, 3)
-        assert np.array_equal(cells, Vu.dofmap.list.array.reshape(-1, 3)), \
+        cells = dofmap_array(V)
+        assert np.array_equal(cells, dofmap_array(Vu)), \
             "scalar and vector P1 dofmaps differ"
         self.x = V.tabulate_dof_coordinates()[:, :2]
         self.cells = cells
@@ -50,11 +52,10 @@ class RunState:
         self.phi = phi.x.array.copy()
 
         midpoint = np.array([[1.0 / 3.0, 1.0 / 3.0]])
-        dg0 = fem.VectorFunctionSpace(msh, ("DG", 0))
-        D = fem.Function(dg0)
+        D = fem.Function(functionspace(msh, ("DG", 0, (2,))))
         D.interpolate(fem.Expression(pf.electric_displacement(u, phi, mat), midpoint))
         self.D = D.x.array.reshape(-1, 2).copy()
-        stress = fem.Function(fem.VectorFunctionSpace(msh, ("DG", 0), dim=3))
+        stress = fem.Function(functionspace(msh, ("DG", 0, (3,))))
         sigma = pf.stress_voigt(u, pf.velocity(u, u_prev, data), phi, mat)
         stress.interpolate(fem.Expression(sigma, midpoint))
         s = stress.x.array.reshape(-1, 3)

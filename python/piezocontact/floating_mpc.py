@@ -3,7 +3,7 @@
 The C++ loop solves a floating electrode as one extra unknown bordering the
 factorisation in use (cpp/piezocontact/floating.h). The reference engine
 checks it by another construction: a multi-point constraint (dolfinx_mpc
-0.5) ties every potential dof of the electrode to one master dof, so that the
+0.5 or 0.9) ties every potential dof of the electrode to one master dof, so that the
 space itself holds only uniform potentials there. The master's row of the
 constrained residual is then the residual tested with psi_E, the sum of the
 electrode's basis functions, and the electrode's charge condition
@@ -20,10 +20,11 @@ backsubstitution: it adds) before each assembly.
 import dolfinx_mpc
 import dolfinx_mpc.cpp
 import numpy as np
-from dolfinx import cpp as dcpp
-from dolfinx import fem
+from dolfinx import fem, la
 from mpi4py import MPI
 from petsc4py import PETSc
+
+from ._compat import cpp, dirichletbcs, mpc_backsubstitution, petsc_vec
 
 _NONE = np.iinfo(np.int64).max
 
@@ -35,7 +36,7 @@ class FloatingConstraint:
     def __init__(self, x, problem, F_form, J_form):
         self.x, self.problem = x, problem
         self.F_form, self.J_form = F_form, J_form
-        self.bcs = problem.fixed_bcs
+        self.bcs = dirichletbcs(problem.fixed_bcs)
         W = x.function_space
         self.comm = W.mesh.comm
         imap = W.dofmap.index_map
@@ -69,19 +70,18 @@ class FloatingConstraint:
 
     def create_vector(self):
         V = self.mpc.function_space
-        return dcpp.la.petsc.create_vector(V.dofmap.index_map, V.dofmap.index_map_bs)
+        return la.create_petsc_vector(V.dofmap.index_map, V.dofmap.index_map_bs)
 
     def create_matrix(self):
-        return dolfinx_mpc.cpp.mpc.create_matrix(self.J_form, self.mpc._cpp_object)
+        return dolfinx_mpc.cpp.mpc.create_matrix(cpp(self.J_form), self.mpc._cpp_object)
 
     def take(self, X):
         """x <- the full state of the solver's X (slaves = their master)."""
-        full = self._full.vector
+        full = petsc_vec(self._full)
         X.copy(full)
         full.ghostUpdate(PETSc.InsertMode.INSERT, PETSc.ScatterMode.FORWARD)
-        self.mpc.homogenize(full)
-        self.mpc.backsubstitution(full)
-        self.x.vector.array_w[:] = full.array_r
+        mpc_backsubstitution(self.mpc, self._full)
+        petsc_vec(self.x).array_w[:] = full.array_r
         self.x.x.scatter_forward()
 
     def residual(self, b):
@@ -89,7 +89,7 @@ class FloatingConstraint:
         with each master row plus the electrode's charge."""
         dolfinx_mpc.assemble_vector(self.F_form, self.mpc, b=b)
         dolfinx_mpc.apply_lifting(b, [self.J_form], [self.bcs], self.mpc,
-                                  x0=[self.x.vector], scale=-1.0)
+                                  x0=[petsc_vec(self.x)], scale=-1.0)
         b.ghostUpdate(PETSc.InsertMode.ADD, PETSc.ScatterMode.REVERSE)
         charges = self.problem.target_charges()
         with b.localForm() as local:

@@ -15,6 +15,7 @@ import ufl
 from dolfinx import fem
 from dolfinx import mesh as dmesh
 
+from . import _compat as compat
 from . import cpp
 
 
@@ -32,14 +33,20 @@ def _forms_dir():
 sys.path.insert(0, str(_forms_dir()))
 import manufactured as mms  # noqa: E402
 import piezo_forms as pf  # noqa: E402
-from entry_points import MIDPOINT, VERTICES  # noqa: E402  (the reference points, by dimension)
+# the elements (those ffcx compiles) and the reference points, by cell
+from entry_points import DIMENSION, MIDPOINT, VERTICES, elements  # noqa: E402
 
 
 def python_mesh(named):
-    """dolfinx's Python Mesh around the C++ mesh of a NamedMesh."""
+    """dolfinx's Python Mesh around the C++ mesh of a NamedMesh, on the
+    coordinate element of the forms."""
     cpp_mesh = named.mesh
-    cell = ufl.Cell(cpp_mesh.topology.cell_name(), geometric_dimension=cpp_mesh.geometry.dim)
-    return dmesh.Mesh(cpp_mesh, ufl.Mesh(ufl.VectorElement("Lagrange", cell, 1)))
+    cell_name = compat.cell_name(cpp_mesh.topology)
+    if cpp_mesh.geometry.dim != DIMENSION[cell_name]:  # the element's, and the kernels'
+        raise ValueError(f"a mesh of {cell_name}s in {cpp_mesh.geometry.dim}D: "
+                         f"expected {DIMENSION[cell_name]}D coordinates")
+    coordinate, _ = elements(cell_name)
+    return dmesh.Mesh(cpp_mesh, ufl.Mesh(coordinate))
 
 
 def _constant(msh, shape):
@@ -66,7 +73,7 @@ def set_constants(cfg, shared, materials, loads, source="config"):
     """Fill the Constants from a validated config, by the C++ core (as for a
     run)."""
     def cpp_map(constants):
-        return {n: c._cpp_object for n, c in constants.items()}
+        return {n: compat.cpp(c) for n, c in constants.items()}
     cpp.set_constants(json.dumps(cfg), cpp_map(shared),
                       {r: cpp_map(m) for r, m in materials.items()},
                       {b: cpp_map(m) for b, m in loads.items()}, source)
@@ -103,10 +110,8 @@ class JitModel:
         self.mesh = python_mesh(named)
         msh = self.mesh
         d, tdim = msh.geometry.dim, msh.topology.dim
-        cell = msh.ufl_cell()
-        element = ufl.MixedElement([ufl.VectorElement("Lagrange", cell, 1),
-                                    ufl.FiniteElement("Lagrange", cell, 1)])
-        self.W = fem.FunctionSpace(msh, element)
+        cell_name = compat.cell_name(msh.topology)
+        self.W = compat.functionspace(msh, elements(cell_name)[1])
         self.x = fem.Function(self.W, name="x")
         self.x_prev = fem.Function(self.W, name="x_prev")
         x, x_prev = self.x, self.x_prev
@@ -129,7 +134,7 @@ class JitModel:
 
         F, J, L, J_state = [], [], [], []
         self.fields = []
-        midpoint = np.array(MIDPOINT[cell.cellname()])
+        midpoint = np.array(MIDPOINT[cell_name])
         u, phi = ufl.split(x)
         u_prev, _ = ufl.split(x_prev)
         for region, mat in self.materials.items():
@@ -192,7 +197,7 @@ class JitModel:
         self.exact, self.squared_errors = None, {}
         if manufactured:
             u_ex, phi_ex, _ = mms.exact_solution(msh.ufl_domain(), data)
-            vertices = np.array(VERTICES[msh.ufl_cell().cellname()])
+            vertices = np.array(VERTICES[cell_name])
             self.exact = (fem.Expression(u_ex, vertices), fem.Expression(phi_ex, vertices))
             self.squared_errors = {name: fem.form(f)
                                    for name, f in mms.squared_errors(x, data).items()}
@@ -202,8 +207,8 @@ class JitModel:
         cell and facet tags: the reference engine's view of the model."""
         named, msh, x, x_prev = self.named, self.mesh, self.x, self.x_prev
         y, dx_trial = ufl.TestFunction(self.W), ufl.TrialFunction(self.W)
-        dx = ufl.Measure("dx", domain=msh, subdomain_data=named.cell_tags)
-        ds = ufl.Measure("ds", domain=msh, subdomain_data=named.facet_tags)
+        dx = ufl.Measure("dx", domain=msh, subdomain_data=compat.meshtags(named.cell_tags))
+        ds = ufl.Measure("ds", domain=msh, subdomain_data=compat.meshtags(named.facet_tags))
         contact = [named.tag_of[b] for b, bc in cfg["boundaries"].items()
                    if bc.get("contact") and b in named.tag_of]
         if manufactured:
@@ -220,36 +225,40 @@ class JitModel:
             w, psi = ufl.split(y)
             hook_data = {**self.data, **(next(iter(self.materials.values()))
                                          if len(self.materials) == 1 else {})}
-            F = F + extra_residual(u, phi, w, psi, hook_data)
+            F = compat.one_subdomain_data(F + extra_residual(u, phi, w, psi, hook_data))
         self.F_whole = fem.form(F)
         self.J_whole = fem.form(pf.jacobian(F, x, dx_trial))
 
     def cpp_model(self):
+        """The Model the C++ core runs: the C++ objects under the Python
+        ones (compat.cpp), which stay alive in this JitModel."""
+        c = compat.cpp
+
+        def cpp_map(objects):
+            return {name: c(obj) for name, obj in objects.items()}
         m = cpp.Model()
         m.mesh = self.named
-        m.W = self.W._cpp_object
-        m.x = self.x._cpp_object
-        m.x_prev = self.x_prev._cpp_object
-        m.constants = {name: c._cpp_object for name, c in self.data.items()}
-        m.materials = {r: {n: c._cpp_object for n, c in mat.items()}
-                       for r, mat in self.materials.items()}
-        m.loads = {b: {n: c._cpp_object for n, c in load.items()}
-                   for b, load in self.loads.items()}
+        m.W, m.x, m.x_prev = c(self.W), c(self.x), c(self.x_prev)
+        m.constants = cpp_map(self.data)
+        m.materials = {r: cpp_map(mat) for r, mat in self.materials.items()}
+        m.loads = {b: cpp_map(load) for b, load in self.loads.items()}
         m.contact_facets = self.contact_facets
-        m.F, m.J, m.J_contact, m.L = self.F_terms, self.J_terms, self.J_state, self.L_terms
-        m.contact_force = self.contact_force
+        m.F, m.J, m.J_contact, m.L = ([c(f) for f in forms] for forms in
+                                      (self.F_terms, self.J_terms, self.J_state, self.L_terms))
+        m.contact_force = [c(f) for f in self.contact_force]
         fields = []
         for cells, D, stress in self.fields:
             f = cpp.RegionFields()
-            f.cells, f.electric_displacement, f.stress = cells, D._cpp_object, stress._cpp_object
+            f.cells, f.electric_displacement, f.stress = cells, c(D), c(stress)
             fields.append(f)
         m.fields = fields
         if self.exact:
-            m.u_exact, m.phi_exact = (e._cpp_object for e in self.exact)
-        m.squared_errors = self.squared_errors
-        m.boundary_measures = self.boundary_measures
-        m.contact_pressure_load, m.contact_nodal_area = self.contact_pressure
-        m.electrode_charge = self.electrode_charge
+            m.u_exact, m.phi_exact = (c(e) for e in self.exact)
+        m.squared_errors = cpp_map(self.squared_errors)
+        m.boundary_measures = cpp_map(self.boundary_measures)
+        m.contact_pressure_load, m.contact_nodal_area = (c(f) for f in self.contact_pressure)
+        m.electrode_charge = {b: [c(f) for f in forms]
+                              for b, forms in self.electrode_charge.items()}
         return m
 
 

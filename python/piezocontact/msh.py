@@ -19,6 +19,8 @@ from dolfinx import io
 from dolfinx.io import gmshio
 from mpi4py import MPI
 
+from ._compat import write_meshtags
+
 
 def physical_names(dim):
     """{name: tag} of the physical groups of dimension dim."""
@@ -51,8 +53,8 @@ def convert(source, output):
     mesh.topology.create_connectivity(tdim - 1, tdim)
     with io.XDMFFile(MPI.COMM_SELF, str(output), "w") as xdmf:
         xdmf.write_mesh(mesh)
-        xdmf.write_meshtags(facet_tags)
-        xdmf.write_meshtags(cell_tags)
+        write_meshtags(xdmf, facet_tags, mesh)
+        write_meshtags(xdmf, cell_tags, mesh)
     output.with_suffix(".boundaries.json").write_text(json.dumps(
         {"boundaries": boundaries, "regions": regions, "source": str(source)}, indent=1))
     return mesh

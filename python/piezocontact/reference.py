@@ -11,11 +11,13 @@ library's, so that the summaries of all engines compare key by key."""
 import json
 import time
 
+import dolfinx.fem.petsc  # noqa: F401  (0.9 does not import it with dolfinx.fem)
 import numpy as np
 from dolfinx import fem
 from petsc4py import PETSc
 
 from . import cpp
+from ._compat import dirichletbcs, petsc_vec
 
 # Converged when each field's increment is this small against the field;
 # far below the 1e-8 at which the engines are compared
@@ -28,7 +30,7 @@ class _Newton:
     electrodes by a multi-point constraint (floating_mpc.py)."""
 
     def __init__(self, model, problem, settings, comm):
-        self.x, self.bcs, self.problem = model.x, problem.bcs, problem
+        self.x, self.bcs, self.problem = model.x, dirichletbcs(problem.bcs), problem
         self.F_form, self.J_form = model.F_whole, model.J_whole
         self.fields = {"u": np.asarray(problem.u_dofs), "phi": np.asarray(problem.phi_dofs)}
         self.floating = None
@@ -65,15 +67,16 @@ class _Newton:
             self.floating.residual(F)
         else:
             x.ghostUpdate(PETSc.InsertMode.INSERT, PETSc.ScatterMode.FORWARD)
-            x.copy(self.x.vector)
-            self.x.vector.ghostUpdate(PETSc.InsertMode.INSERT, PETSc.ScatterMode.FORWARD)
+            x.copy(petsc_vec(self.x))
+            petsc_vec(self.x).ghostUpdate(PETSc.InsertMode.INSERT, PETSc.ScatterMode.FORWARD)
             with F.localForm() as f:
                 f.set(0.0)
             fem.petsc.assemble_vector(F, self.F_form)
-            fem.petsc.apply_lifting(F, [self.J_form], bcs=[self.bcs], x0=[x], scale=-1.0)
+            # scale = -1 (0.9 calls it alpha): positional for both
+            fem.petsc.apply_lifting(F, [self.J_form], [self.bcs], [x], -1.0)
             F.ghostUpdate(PETSc.InsertMode.ADD, PETSc.ScatterMode.REVERSE)
         self.balance = self.problem.force_balance(F.getArray(readonly=True))
-        fem.petsc.set_bc(F, self.bcs, self.x.vector, -1.0)
+        fem.petsc.set_bc(F, self.bcs, petsc_vec(self.x), -1.0)
         self.assembly_s += time.perf_counter() - t0
 
     def _J(self, snes, x, A, P):
@@ -105,7 +108,7 @@ class _Newton:
             return 0
         # x as assembled (with floating electrodes, the solver's own vector
         # keeps stale entries at constrained dofs)
-        dx, x = self._norms(snes.getSolutionUpdate()), self._norms(self.x.vector)
+        dx, x = self._norms(snes.getSolutionUpdate()), self._norms(petsc_vec(self.x))
         relative = {f: dx[f] / x[f] if x[f] > 0 else 0.0 for f in dx}
         self.history.append({f: (F_norms[f], relative[f]) for f in F_norms})
         # Small increments are not enough where the penalty makes J
@@ -125,13 +128,13 @@ class _Newton:
         """Newton from the current x; (iterations, converged)."""
         if self.floating:
             x = self.floating.create_vector()
-            self.x.vector.copy(x)  # the owned layouts agree
+            petsc_vec(self.x).copy(x)  # the owned layouts agree
             self.snes.solve(None, x)
             self.floating.take(x)
         else:
-            x = self.x.vector.copy()
+            x = petsc_vec(self.x).copy()
             self.snes.solve(None, x)
-            x.copy(self.x.vector)
+            x.copy(petsc_vec(self.x))
             self.x.x.scatter_forward()
         return self.snes.getIterationNumber(), self.snes.getConvergedReason() > 0
 
@@ -197,7 +200,7 @@ def run(model, problem, settings, output, summary, progress, observer=None):
         t = n * k
         problem.set_time(t, k)
         x[:] = x_prev
-        fem.petsc.set_bc(model.x.vector, newton.bcs)
+        fem.petsc.set_bc(petsc_vec(model.x), newton.bcs)
         model.x.x.scatter_forward()
         t0 = time.perf_counter()
         its, converged = newton.solve()
