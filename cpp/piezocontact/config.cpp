@@ -797,6 +797,8 @@ RunSettings run_settings(const json& cfg)
   s.newton = {newton["rtol"].get<double>(), newton["atol"].get<double>(),
               newton["max_iterations"].get<int>(), newton["max_step_halvings"].get<int>()};
   s.reuse_factorisation = cfg["solver"]["reuse_factorisation"].get<bool>();
+  s.linear = cfg["solver"]["linear"].get<std::string>() == "iterative" ? LinearSolver::iterative
+                                                                       : LinearSolver::direct;
   for (const auto& [key, value] : cfg["solver"]["petsc_options"].items())
     s.petsc_options.emplace_back(key, value.is_string() ? value.get<std::string>()
                                                         : value.dump()); // numbers, bools

@@ -155,7 +155,7 @@ json run_config(const RunRequest& request, MPI_Comm comm, const ModelFactory& ma
                 const Engine& engine, const StepObserver& observer)
 {
   const RunSettings settings = run_settings(request.cfg);
-  check_petsc_options(settings.petsc_options, request.source);
+  check_petsc_options(settings.petsc_options, settings.linear, request.source);
   const QuietPetscErrors quiet; // PETSc failures become exceptions, not dumps
   std::optional<std::filesystem::path> mesh_file;
   if (!request.resume)

@@ -70,9 +70,10 @@ bool absolute_values(Mat M)
 }
 } // namespace
 
-void FieldwiseConvergence::set_scaling(Mat A)
+void FieldwiseConvergence::set_scaling(Mat A, bool scaled_in_place)
 {
   _A = A;
+  _scaled = scaled_in_place;
   _abs_stale = true; // |J| is made when a zero field needs it
   Vec v;
   MatCreateVecs(A, nullptr, &v);
@@ -119,8 +120,9 @@ std::vector<double> FieldwiseConvergence::coupling(std::span<const double> x)
     VecSet(_in->vec(), 0.0);
     PetscScalar* a;
     VecGetArray(_in->vec(), &a);
+    // D^-1/2 |J| |x| = |D^-1/2 J D^-1/2| (D^1/2 |x|)
     for (auto i : from_dofs)
-      a[i] = std::abs(x[i]);
+      a[i] = _scaled ? std::abs(x[i]) * _sqrt_d[i] : std::abs(x[i]);
     VecRestoreArray(_in->vec(), &a);
     MatMult(_abs_A->mat(), _in->vec(), _out->vec());
     const PetscScalar* y;
@@ -130,7 +132,10 @@ std::vector<double> FieldwiseConvergence::coupling(std::span<const double> x)
     {
       if (to != from)
         for (auto i : to_dofs)
-          local[f] += (y[i] / _sqrt_d[i]) * (y[i] / _sqrt_d[i]);
+        {
+          const double yi = _scaled ? y[i] : y[i] / _sqrt_d[i];
+          local[f] += yi * yi;
+        }
       ++f;
     }
     VecRestoreArrayRead(_out->vec(), &y);
@@ -164,6 +169,7 @@ bool FieldwiseConvergence::check(std::span<const double> x,
 
   std::map<std::string, FieldNorms> entry;
   bool ok = true;
+  double threshold = std::numeric_limits<double>::infinity(), size = 0.0;
   std::vector<double> coupled; // c_f, computed only if a field fails its test
   std::size_t f = 0;
   for (const auto& [name, _] : _dofs)
@@ -173,7 +179,8 @@ bool FieldwiseConvergence::check(std::span<const double> x,
     // The floor is this field's own scale at the solve's first iterate
     if (first)
       _s_start[name] = s;
-    bool converged = r <= _rtol * s + _atol * _s_start[name];
+    double accept = _rtol * s + _atol * _s_start[name];
+    bool converged = r <= accept;
     double scale = s; // what the test measures r_f against
     // after a Newton step, a field that fails may be zero to the round-off
     // of the terms around it. c_f <= K s_g (the scaled coupling block is
@@ -190,9 +197,12 @@ bool FieldwiseConvergence::check(std::span<const double> x,
       if (s <= roundoff * coupled[f])
       {
         scale = coupled[f];
-        converged = r <= roundoff * coupled[f];
+        accept = roundoff * coupled[f];
+        converged = r <= accept;
       }
     }
+    threshold = std::min(threshold, accept);
+    size += s * s;
     const double rel = scale > 0 ? r / scale
                                  : (r == 0 ? 0.0 : std::numeric_limits<double>::quiet_NaN());
     entry[name] = {si, r, rel};
@@ -200,6 +210,9 @@ bool FieldwiseConvergence::check(std::span<const double> x,
     ++f;
   }
   history.push_back(entry);
+  // a zero field (s_f = 0 at a predictor, or short-circuited) asks for
+  // what round-off allows
+  _krylov_atol = std::max(0.5 * threshold, 0.1 * roundoff * std::sqrt(size));
   return ok;
 }
 } // namespace piezocontact

@@ -57,8 +57,14 @@ public:
                        MPI_Comm comm);
 
   /// Take D = |diag J| from an assembled Jacobian (and |J| if a zero field
-  /// needs it)
-  void set_scaling(Mat A);
+  /// needs it). `scaled_in_place`: the caller then scales A to
+  /// D^-1/2 A D^-1/2 (the iterative solver), which |J| is read as
+  void set_scaling(Mat A, bool scaled_in_place = false);
+
+  /// Half the scaled residual the test would accept at the last recorded
+  /// iterate, for the field that asks most (never below round-off of the
+  /// state): what a linear solve of the next Newton step must reach
+  double krylov_atol() const { return _krylov_atol; }
 
   /// Record one iterate (owned parts of x and F); true when converged. A
   /// solve starts with an empty `history`.
@@ -72,7 +78,9 @@ private:
   /// set_scaling. Collective.
   std::vector<double> coupling(std::span<const double> x);
   Mat _A = nullptr;
+  bool _scaled = false; ///< _A holds D^-1/2 J D^-1/2
   bool _abs_stale = true;
+  double _krylov_atol = 0.0;
   /// |J| entry by entry (null if J is not an AIJ matrix: no c_f then)
   std::unique_ptr<dolfinx::la::petsc::Matrix> _abs_A;
   std::unique_ptr<dolfinx::la::petsc::Vector> _in, _out;

@@ -72,11 +72,11 @@ std::optional<la::petsc::Matrix> unconstrained_jacobian(const Problem& p)
 } // namespace
 
 NonlinearSystem::NonlinearSystem(Problem& p, FieldwiseConvergence& monitor, KSP ksp,
-                                 bool reuse_lu)
+                                 bool reuse_lu, LinearSolver linear_solver)
     : b(la::petsc::create_vector(*p.W->dofmap()->index_map, p.W->dofmap()->index_map_bs()),
         false),
-      A(create_matrix(p.model.J, *p.W), false), floating(p, unconstrained_jacobian(p)),
-      _p(p), _monitor(monitor), _ksp(ksp), _reuse(reuse_lu),
+      A(create_matrix(p.model.J, *p.W), false), linear(ksp, p, linear_solver),
+      floating(p, unconstrained_jacobian(p)), _p(p), _monitor(monitor), _ksp(ksp), _reuse(reuse_lu),
       _Jc(create_matrix(p.model.J_contact, *p.W), false)
 {
 }
@@ -126,11 +126,11 @@ void NonlinearSystem::record_reactions(Vec r)
 void NonlinearSystem::J(const Vec, Mat M)
 {
   bool same = false;
+  const double k = _p.model.constants.at("k")->value[0];
   {
     ScopedTimer timer(contact_jacobian, "contact Jacobian");
     assemble_into(_Jc.mat(), _p.model.J_contact, {}, *_p.W);
     std::vector<double> values = local_values(_Jc.mat());
-    const double k = _p.model.constants.at("k")->value[0];
     int equal = _reuse and k == _k_last and values == _Jc_last;
     MPI_Allreduce(MPI_IN_PLACE, &equal, 1, MPI_INT, MPI_LAND, _p.comm);
     same = equal;
@@ -139,7 +139,8 @@ void NonlinearSystem::J(const Vec, Mat M)
   }
   if (same)
   {
-    ++reused; // M unchanged: its state too, so PETSc keeps the LU
+    ++reused; // M unchanged: its state too, so PETSc keeps the LU (or AMG)
+    linear.set_newton_tolerance(_monitor.krylov_atol());
     return;
   }
   {
@@ -148,14 +149,30 @@ void NonlinearSystem::J(const Vec, Mat M)
   }
   const auto x = _p.x->x()->array();
   x_assembled.assign(x.begin(), x.end());
-  k_assembled = _k_last;
-  _monitor.set_scaling(M);
+  const bool k_changed = k != k_assembled;
+  k_assembled = k;
+  _monitor.set_scaling(M, linear.iterative()); // reads the unscaled diagonal
   {
-    // Factorise here, timed apart from the triangular solves of KSPSolve
-    ScopedTimer timer(factorisation, "LU factorisation");
-    KSPSetOperators(_ksp, M, M);
-    KSPSetUp(_ksp);
+    // Factorise (set up the preconditioner) here, timed apart from the
+    // solves of KSPSolve
+    common::Timer timer(linear.iterative() ? "piezocontact: preconditioner set-up"
+                                           : "piezocontact: LU factorisation");
+    const bool fresh = linear.operator_changed(M, k_changed);
+    factorisation.seconds += timer.stop();
+    ++(fresh ? factorisation.count : lagged);
   }
-  floating.factorised(_ksp);
+  if (!floating.empty())
+  {
+    linear.set_relative_tolerance();
+    floating.factorised(_ksp);
+    linear.check_solve("a floating electrode's unit response");
+  }
+  linear.set_newton_tolerance(_monitor.krylov_atol());
+}
+
+void NonlinearSystem::update(Vec dx, Vec x)
+{
+  linear.check_solve("Newton step");
+  floating.update(dx, x);
 }
 } // namespace piezocontact

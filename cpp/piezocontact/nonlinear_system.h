@@ -1,7 +1,7 @@
 // Residual and Jacobian callbacks of the Newton solver, in the way of dolfinx
 // Python's NonlinearProblem.F/J (the 0.5.2 C++ hyperelasticity demo's F
 // callback omits the lifting and is no model), plus:
-//  * LU reuse: the bulk of J is linear, so J changes between iterates only
+//  * LU reuse (or, iterative, preconditioner reuse): the bulk of J is linear, so J changes between iterates only
 //    if its contact part (form J_contact, contact facets only) or k does.
 //    That part is assembled and compared exactly with the last one; if equal,
 //    J is left untouched and PETSc keeps its factorisation. Any law p is
@@ -10,11 +10,13 @@
 //    current iterate before the Dirichlet rows are overwritten;
 //  * floating electrodes (floating.h): their charge residuals, read there
 //    too, and their unit responses after each factorisation;
+//  * the linear solver's set-up and checks (linear_solver.h);
 //  * timings and counts of every operation, for the benchmarks.
 #pragma once
 
 #include "fieldwise.h"
 #include "floating.h"
+#include "linear_solver.h"
 #include "problem.h"
 #include "timing.h"
 
@@ -27,17 +29,25 @@ namespace piezocontact
 class NonlinearSystem
 {
 public:
-  NonlinearSystem(Problem& p, FieldwiseConvergence& monitor, KSP ksp, bool reuse_lu);
+  /// After the KSP's options were set
+  NonlinearSystem(Problem& p, FieldwiseConvergence& monitor, KSP ksp, bool reuse_lu,
+                  LinearSolver linear);
 
   void F(const Vec x, Vec r);
   void J(const Vec x, Mat M);
+  /// Newton's update after a linear solve (checked: LinearSolveFailure)
+  void update(Vec dx, Vec x);
 
   /// The residual vector and the Jacobian matrix (RAII: PETSc objects
   /// destroyed with the system)
   dolfinx::la::petsc::Vector b;
   dolfinx::la::petsc::Matrix A;
+  /// factorisation: LU factorisations, or preconditioner set-ups (iterative)
   OperationStats residual, jacobian, contact_jacobian, factorisation;
   int reused = 0; ///< Newton iterations that kept the last factorisation
+  /// iterative: Jacobians that kept the last preconditioner set-up (lagged)
+  int lagged = 0;
+  LinearSolverSetup linear;
   /// reaction of each clamped boundary at the last residual evaluation
   std::map<std::string, std::vector<double>> reactions;
   /// ... and the balance of forces in it

@@ -3,6 +3,8 @@
 // PETSc's errors during a run made exceptions without the dump.
 #pragma once
 
+#include "settings.h"
+
 #include <mpi.h>
 #include <string>
 #include <utility>
@@ -15,15 +17,17 @@ inline const std::string petsc_prefix = "piezocontact_";
 
 using PetscOptionList = std::vector<std::pair<std::string, std::string>>;
 
-/// The C++ loop's linear solver unless the config says otherwise: LU by MUMPS
-PetscOptionList loop_defaults();
+/// The C++ loop's linear solver unless the config's options say otherwise:
+/// LU by MUMPS, or GMRES with a u/phi block preconditioner
+PetscOptionList loop_defaults(LinearSolver linear);
 
 /// Set up and solve a small two-field system with the loop's defaults and
 /// these options (keys without prefix or dash), on each process alone: an
 /// unknown type, a malformed number or a solver that cannot be set up is a
 /// ConfigError naming `source`, the first such key and its value. Options
 /// the toy system does not reach are checked when the run's solver is set up.
-void check_petsc_options(const PetscOptionList& options, const std::string& source);
+void check_petsc_options(const PetscOptionList& options, LinearSolver linear,
+                         const std::string& source);
 
 /// Options set under `prefix` while alive: the options database is global,
 /// and a later run in the same process must not inherit them

@@ -65,12 +65,21 @@ struct OutputSettings
   std::string nodal = "final"; ///< "none", "final" or "all" steps as .npy
 };
 
+/// solver.linear: LU (MUMPS), or GMRES with a u/phi block preconditioner
+/// (linear_solver.h)
+enum class LinearSolver
+{
+  direct,
+  iterative
+};
+
 struct RunSettings
 {
   double T = 1.0;
   int steps = 1;
   NewtonSettings newton;
   bool reuse_factorisation = true;
+  LinearSolver linear = LinearSolver::direct;
   /// PETSc options of the linear solver, without our prefix
   std::vector<std::pair<std::string, std::string>> petsc_options;
   std::vector<std::array<double, 3>> probes;

@@ -33,45 +33,6 @@ std::string sci(double v)
   return buf;
 }
 
-/// With pc_type fieldsplit, PETSc is told which dofs are u and which phi
-/// (fieldsplit_u_*, fieldsplit_phi_* options then configure each block)
-void set_field_splits(KSP ksp, const Problem& problem)
-{
-  PC pc;
-  KSPGetPC(ksp, &pc);
-  PetscBool is_fieldsplit;
-  PetscObjectTypeCompare((PetscObject)pc, PCFIELDSPLIT, &is_fieldsplit);
-  if (!is_fieldsplit)
-    return;
-  const auto& imap = *problem.W->dofmap()->index_map;
-  const std::int32_t owned = imap.size_local() * problem.W->dofmap()->index_map_bs();
-  const std::int64_t offset = imap.local_range()[0] * problem.W->dofmap()->index_map_bs();
-  for (const auto& [name, dofs] : {std::pair{"u", &problem.u_dofs},
-                                    std::pair{"phi", &problem.phi_dofs}})
-  {
-    std::vector<PetscInt> global;
-    for (auto d : *dofs)
-      if (d < owned)
-        global.push_back(offset + d);
-    std::sort(global.begin(), global.end());
-    IS is;
-    ISCreateGeneral(problem.comm, global.size(), global.data(), PETSC_COPY_VALUES, &is);
-    // u comes in blocks of d components per node: say so, for nodal AMG on
-    // that block
-    const std::size_t d = problem.dim();
-    bool blocks = std::string(name) == "u" and global.size() % d == 0;
-    for (std::size_t i = 0; blocks and i < global.size(); i += d)
-      for (std::size_t c = 1; c < d; ++c)
-        blocks = blocks and global[i + c] == global[i] + PetscInt(c);
-    int all_blocks = blocks;
-    MPI_Allreduce(MPI_IN_PLACE, &all_blocks, 1, MPI_INT, MPI_LAND, problem.comm);
-    if (all_blocks)
-      ISSetBlockSize(is, d);
-    PCFieldSplitSetIS(pc, name, is);
-    ISDestroy(&is);
-  }
-}
-
 /// The fields that did not converge and made no progress in the last
 /// iterations: what round-off of terms far larger than the residual does
 /// (data spanning more orders of magnitude than double precision resolves)
@@ -106,6 +67,8 @@ double callback_seconds(const NonlinearSystem& sys)
 /// Where the time went. Triangular solves: the Newton time not spent in the
 /// callbacks (one KSPSolve per iteration, plus vector updates); the first
 /// Jacobian and factorisation, made before the loop, count in theirs.
+/// Iterative: "factorisation" holds the preconditioner set-ups and
+/// "triangular_solve" the Krylov solves.
 json timing(const NonlinearSystem& sys, double total_s, double newton_s,
             double callbacks_in_newton, int newton_its)
 {
@@ -120,7 +83,9 @@ json timing(const NonlinearSystem& sys, double total_s, double newton_s,
             {"factorisation", sys.factorisation.to_json()},
             {"triangular_solve", {{"count", newton_its}, {"seconds", solves}}},
             {"floating_electrodes", sys.floating.stats.to_json()},
-            {"reused_factorisation", sys.reused}}}};
+            {"reused_factorisation", sys.reused},
+            {"lagged_preconditioner", sys.lagged}}},
+          {"linear_solver", sys.linear.iterative() ? "iterative" : "direct"}};
 }
 
 } // namespace
@@ -139,8 +104,15 @@ json run(Problem& problem, const RunSettings& settings, const std::filesystem::p
   la::petsc::Vector x_vec(la::petsc::create_vector_wrap(*problem.x->x()), false);
   Vec x = x_vec.vec();
   nls::petsc::NewtonSolver newton(comm);
+  // Our prefix, our defaults (LU by MUMPS, or the iterative solver), then
+  // the config's options
+  PetscOptionList options = loop_defaults(settings.linear);
+  options.insert(options.end(), settings.petsc_options.begin(), settings.petsc_options.end());
+  const ScopedPetscOptions scoped_options(petsc_prefix, options);
+  newton.get_krylov_solver().set_options_prefix(petsc_prefix);
+  newton.get_krylov_solver().set_from_options();
   NonlinearSystem system(problem, monitor, newton.get_krylov_solver().ksp(),
-                         settings.reuse_factorisation);
+                         settings.reuse_factorisation, settings.linear);
   newton.setF([&system](const Vec x, Vec r) { system.F(x, r); }, system.b.vec());
   newton.setJ([&system](const Vec x, Mat A) { system.J(x, A); }, system.A.mat());
   newton.set_form(
@@ -182,19 +154,13 @@ json run(Problem& problem, const RunSettings& settings, const std::filesystem::p
         return std::pair<double, bool>(norm, (ok and imbalance <= balance_tolerance)
                                                  or signal != 0);
       });
-  // x <- x - dx, and the floating potentials with it (floating.h)
+  // x <- x - dx, and the floating potentials with it (floating.h), once
+  // the solve is checked
   newton.set_update([&system](const nls::petsc::NewtonSolver&, const Vec dx, Vec x)
-                    { system.floating.update(dx, x); });
+                    { system.update(dx, x); });
   newton.max_it = settings.newton.max_iterations;
   newton.report = false;
   newton.error_on_nonconvergence = false;
-  // Our prefix, our defaults (LU by MUMPS), then the config's options
-  PetscOptionList options = loop_defaults();
-  options.insert(options.end(), settings.petsc_options.begin(), settings.petsc_options.end());
-  const ScopedPetscOptions scoped_options(petsc_prefix, options);
-  newton.get_krylov_solver().set_options_prefix(petsc_prefix);
-  newton.get_krylov_solver().set_from_options();
-  set_field_splits(newton.get_krylov_solver().ksp(), problem);
 
   StepControl steps(settings.T, settings.steps, settings.newton.max_step_halvings);
   auto xa = problem.x->x()->mutable_array();
@@ -258,9 +224,17 @@ json run(Problem& problem, const RunSettings& settings, const std::filesystem::p
     const int f0 = system.factorisation.count;
     common::Timer newton_timer("piezocontact: Newton solve");
     std::pair<int, bool> outcome;
+    std::string linear_failure; // a failed linear solve, if that ended the solve
     try
     {
       outcome = newton.solve(x);
+    }
+    catch (const LinearSolveFailure& e)
+    {
+      if (!e.retry)
+        record.fail(std::string(e.what()) + " at t = " + json(t).dump());
+      outcome = {newton.iteration(), false};
+      linear_failure = e.what();
     }
     catch (const std::runtime_error& e) // a PETSc call failed (QuietPetscErrors)
     {
@@ -283,11 +257,13 @@ json run(Problem& problem, const RunSettings& settings, const std::filesystem::p
     if (!converged)
     {
       const auto& last = monitor.history.back();
-      char what[512];
+      char what[1024];
       std::snprintf(what, sizeof(what),
-                    "Newton did not converge at t = %g (k = %g) in %d iterations: "
+                    "Newton did not converge at t = %g (k = %g) in %d iterations: %s"
                     "relative residuals u = %s, phi = %s%s%s",
-                    t, k, its, sci(last.at("u").relative).c_str(),
+                    t, k, its,
+                    linear_failure.empty() ? "" : (linear_failure + "; ").c_str(),
+                    sci(last.at("u").relative).c_str(),
                     sci(last.at("phi").relative).c_str(),
                     last.contains("charge")
                         ? (", floating charges = " + sci(last.at("charge").relative)).c_str()

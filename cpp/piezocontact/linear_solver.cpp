@@ -1,0 +1,333 @@
+#include "linear_solver.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <array>
+
+namespace piezocontact
+{
+namespace
+{
+std::string reason_name(KSPConvergedReason reason)
+{
+  // KSPConvergedReasons is indexed from its most negative value
+  return KSPConvergedReasons[reason];
+}
+
+bool is_type(PC pc, PCType type)
+{
+  PetscBool same = PETSC_FALSE;
+  PetscObjectTypeCompare(reinterpret_cast<PetscObject>(pc), type, &same);
+  return same;
+}
+
+/// The sub-KSPs of a fieldsplit PC (valid after its set-up)
+std::vector<KSP> sub_ksps(PC pc)
+{
+  PetscInt n = 0;
+  KSP* subs = nullptr;
+  PCFieldSplitGetSubKSP(pc, &n, &subs);
+  std::vector<KSP> out(subs, subs + n);
+  PetscFree(subs);
+  return out;
+}
+} // namespace
+
+LinearSolverSetup::LinearSolverSetup(KSP ksp, const Problem& p, LinearSolver kind)
+    : _ksp(ksp), _kind(kind), _comm(p.comm), _dim(p.dim())
+{
+  make_splits(p);
+  if (!iterative())
+    return;
+  // The user's (or our default) relative tolerance and iteration limit stay;
+  // the absolute one is set per solve
+  PetscReal atol, dtol;
+  KSPGetTolerances(_ksp, &_rtol, &atol, &dtol, &_max_it);
+  KSPSetPreSolve(_ksp, &LinearSolverSetup::pre_solve, this);
+  KSPSetPostSolve(_ksp, &LinearSolverSetup::post_solve, this);
+}
+
+LinearSolverSetup::~LinearSolverSetup()
+{
+  if (iterative())
+  {
+    KSPSetPreSolve(_ksp, nullptr, nullptr);
+    KSPSetPostSolve(_ksp, nullptr, nullptr);
+  }
+  VecDestroy(&_s);
+  ISDestroy(&_is_u);
+  ISDestroy(&_is_phi);
+}
+
+// With pc_type fieldsplit (the iterative default, or a user's options),
+// PETSc is told which dofs are u and which phi: fieldsplit_u_*,
+// fieldsplit_phi_* options configure each block
+void LinearSolverSetup::make_splits(const Problem& p)
+{
+  PC pc;
+  KSPGetPC(_ksp, &pc);
+  if (!is_type(pc, PCFIELDSPLIT))
+    return;
+  const auto& imap = *p.W->dofmap()->index_map;
+  const int bs = p.W->dofmap()->index_map_bs();
+  const std::int32_t owned = imap.size_local() * bs;
+  const std::int64_t offset = imap.local_range()[0] * bs;
+  // u: owned nodes with their d components, in W order (PETSc wants sorted
+  // splits); a node's components are consecutive W dofs in component order
+  // (dolfinx numbers a mixed element's dofs cell by cell, unreordered):
+  // checked, since the u block size and the near null space rely on it
+  const std::size_t d = _dim;
+  std::vector<std::pair<std::int32_t, std::size_t>> nodes; // (first W dof, V_u node)
+  bool blocks = true;
+  for (std::size_t node = 0; node * d < p.u_dofs.size(); ++node)
+  {
+    const std::int32_t w0 = p.u_dofs[node * d];
+    if (w0 >= owned)
+      continue;
+    for (std::size_t c = 1; c < d; ++c)
+      blocks = blocks and p.u_dofs[node * d + c] == w0 + std::int32_t(c);
+    nodes.emplace_back(w0, node);
+  }
+  std::sort(nodes.begin(), nodes.end());
+  int all_blocks = blocks;
+  MPI_Allreduce(MPI_IN_PLACE, &all_blocks, 1, MPI_INT, MPI_LAND, _comm);
+
+  std::vector<PetscInt> u_global, phi_global;
+  if (all_blocks)
+  {
+    const auto X = p.V_u->tabulate_dof_coordinates(false); // (nodes, 3)
+    for (const auto& [w0, node] : nodes)
+      for (std::size_t c = 0; c < d; ++c)
+      {
+        u_global.push_back(offset + w0 + c);
+        _node_x.push_back(X[3 * node + c]);
+      }
+  }
+  else // no blocks: plain sorted u dofs, no near null space
+    for (auto w : p.u_dofs)
+      if (w < owned)
+        u_global.push_back(offset + w);
+  for (auto w : p.phi_dofs)
+    if (w < owned)
+      phi_global.push_back(offset + w);
+  std::sort(u_global.begin(), u_global.end());
+  std::sort(phi_global.begin(), phi_global.end());
+  ISCreateGeneral(_comm, u_global.size(), u_global.data(), PETSC_COPY_VALUES, &_is_u);
+  ISCreateGeneral(_comm, phi_global.size(), phi_global.data(), PETSC_COPY_VALUES, &_is_phi);
+  if (all_blocks)
+    ISSetBlockSize(_is_u, d);
+  PCFieldSplitSetIS(pc, "u", _is_u);
+  PCFieldSplitSetIS(pc, "phi", _is_phi);
+}
+
+void LinearSolverSetup::scale(Mat M)
+{
+  if (!_s)
+    MatCreateVecs(M, &_s, nullptr);
+  MatGetDiagonal(M, _s);
+  PetscInt n;
+  VecGetLocalSize(_s, &n);
+  PetscScalar* a;
+  VecGetArray(_s, &a);
+  for (PetscInt i = 0; i < n; ++i)
+    a[i] = a[i] != 0.0 ? 1.0 / std::sqrt(std::abs(a[i])) : 1.0;
+  VecRestoreArray(_s, &a);
+  MatDiagonalScale(M, _s, _s);
+}
+
+bool LinearSolverSetup::operator_changed(Mat M, bool k_changed)
+{
+  if (iterative())
+    scale(M);
+  const bool lag = iterative() and setups > 0 and !k_changed and !_stale;
+  KSPSetReusePreconditioner(_ksp, lag ? PETSC_TRUE : PETSC_FALSE);
+  KSPSetOperators(_ksp, M, M);
+  KSPSetUp(_ksp);
+  if (lag)
+  {
+    ++lagged;
+    return false;
+  }
+  ++setups;
+  _its_min = std::numeric_limits<int>::max();
+  _stale = false;
+  set_up_blocks();
+  return true;
+}
+
+// The near null space goes on the u block's own matrix, which exists once
+// the fieldsplit PC is set up and before its blocks are: their AMG set-up
+// happens here, not lazily in the first solve (and is timed with it)
+void LinearSolverSetup::set_up_blocks()
+{
+  PC pc;
+  KSPGetPC(_ksp, &pc);
+  if (!is_type(pc, PCFIELDSPLIT))
+    return;
+  const std::vector<KSP> subs = sub_ksps(pc);
+  if (iterative() and !subs.empty())
+    attach_near_nullspace();
+  for (KSP sub : subs)
+    KSPSetUp(sub);
+}
+
+// Rigid body modes of the owned u nodes about their centroid, times D^1/2
+// (the modes of S K S are S^-1 Z), orthonormalised
+void LinearSolverSetup::attach_near_nullspace()
+{
+  PC pc;
+  KSPGetPC(_ksp, &pc);
+  const std::vector<KSP> subs = sub_ksps(pc);
+  Mat A_u, P_u;
+  KSPGetOperators(subs[0], &A_u, &P_u);
+  PC pc_u;
+  KSPGetPC(subs[0], &pc_u);
+  PetscInt bs = 1;
+  MatGetBlockSize(P_u, &bs);
+  std::int64_t n_nodes = _node_x.size();
+  MPI_Allreduce(MPI_IN_PLACE, &n_nodes, 1, MPI_INT64_T, MPI_SUM, _comm);
+  if (bs != _dim or n_nodes == 0)
+    return; // u not split by node (same answer on every rank): no modes
+
+  const std::size_t d = _dim, nodes = _node_x.size() / d;
+  // centroid of all u nodes
+  std::array<double, 4> sum = {0, 0, 0, double(nodes)};
+  for (std::size_t i = 0; i < nodes; ++i)
+    for (std::size_t c = 0; c < d; ++c)
+      sum[c] += _node_x[d * i + c];
+  MPI_Allreduce(MPI_IN_PLACE, sum.data(), 4, MPI_DOUBLE, MPI_SUM, _comm);
+  std::array<double, 3> centre = {0, 0, 0};
+  for (std::size_t c = 0; c < d; ++c)
+    centre[c] = sum[3] > 0 ? sum[c] / sum[3] : 0.0;
+
+  // translations only for smoothed aggregation; BoomerAMG builds them in
+  const bool rotations_only = is_type(pc_u, PCHYPRE);
+  const int n_rot = d == 3 ? 3 : 1;
+  const int n_modes = rotations_only ? n_rot : int(d) + n_rot;
+  // sqrt(|diag J|) on the u split, in its order
+  Vec s_u;
+  VecGetSubVector(_s, _is_u, &s_u);
+  const PetscScalar* s;
+  VecGetArrayRead(s_u, &s);
+  std::vector<Vec> modes(n_modes);
+  for (int m = 0; m < n_modes; ++m)
+  {
+    VecCreateMPI(_comm, nodes * d, PETSC_DETERMINE, &modes[m]);
+    VecSetBlockSize(modes[m], d);
+    PetscScalar* v;
+    VecGetArray(modes[m], &v);
+    for (std::size_t i = 0; i < nodes; ++i)
+    {
+      double r[3] = {0, 0, 0}, mode[3] = {0, 0, 0};
+      for (std::size_t c = 0; c < d; ++c)
+        r[c] = _node_x[d * i + c] - centre[c];
+      const int rot = rotations_only ? m : m - int(d);
+      if (rot < 0)
+        mode[m] = 1.0; // translation along m
+      else if (d == 2)
+        mode[0] = -r[1], mode[1] = r[0];
+      else if (rot == 0) // about z
+        mode[0] = -r[1], mode[1] = r[0];
+      else if (rot == 1) // about x
+        mode[1] = -r[2], mode[2] = r[1];
+      else // about y
+        mode[0] = r[2], mode[2] = -r[0];
+      for (std::size_t c = 0; c < d; ++c)
+        v[d * i + c] = mode[c] / s[d * i + c];
+    }
+    VecRestoreArray(modes[m], &v);
+  }
+  VecRestoreArrayRead(s_u, &s);
+  VecRestoreSubVector(_s, _is_u, &s_u);
+  // modified Gram-Schmidt (MatNullSpaceCreate wants orthonormal vectors)
+  for (int m = 0; m < n_modes; ++m)
+  {
+    for (int j = 0; j < m; ++j)
+    {
+      PetscScalar dot;
+      VecDot(modes[m], modes[j], &dot);
+      VecAXPY(modes[m], -dot, modes[j]);
+    }
+    VecNormalize(modes[m], nullptr);
+  }
+  MatNullSpace space;
+  MatNullSpaceCreate(_comm, PETSC_FALSE, n_modes, modes.data(), &space);
+  MatSetNearNullSpace(P_u, space);
+  if (A_u != P_u)
+    MatSetNearNullSpace(A_u, space);
+  MatNullSpaceDestroy(&space);
+  for (Vec& v : modes)
+    VecDestroy(&v);
+}
+
+void LinearSolverSetup::set_newton_tolerance(double atol)
+{
+  if (iterative())
+    KSPSetTolerances(_ksp, _rtol, atol, PETSC_DEFAULT, _max_it);
+}
+
+void LinearSolverSetup::set_relative_tolerance()
+{
+  if (iterative())
+    KSPSetTolerances(_ksp, std::min<PetscReal>(_rtol, 1e-12), 0.0, PETSC_DEFAULT, _max_it);
+}
+
+int LinearSolverSetup::check_solve(const std::string& what)
+{
+  KSPConvergedReason reason;
+  KSPGetConvergedReason(_ksp, &reason);
+  PetscInt its = 0;
+  KSPGetIterationNumber(_ksp, &its);
+  if (reason >= 0)
+  {
+    if (iterative())
+    {
+      _its_min = std::min(_its_min, int(its));
+      // a lagged preconditioner that has become weak: set it up at the next change
+      _stale = its > 2 * _its_min + 5;
+    }
+    return its;
+  }
+  char text[400];
+  if (reason == KSP_DIVERGED_PC_FAILED and !iterative())
+  {
+    PC pc;
+    KSPGetPC(_ksp, &pc);
+    Mat F = nullptr;
+    MatFactorError error = MAT_FACTOR_NOERROR;
+    if (is_type(pc, PCLU) or is_type(pc, PCCHOLESKY))
+    {
+      PCFactorGetMatrix(pc, &F);
+      MatFactorGetError(F, &error);
+    }
+    if (error == MAT_FACTOR_OUTMEMORY)
+    {
+      std::snprintf(text, sizeof(text),
+                    "the LU factorisation ran out of memory (%s): "
+                    "use solver.linear = \"iterative\"",
+                    what.c_str());
+      throw LinearSolveFailure(text, false);
+    }
+    std::snprintf(text, sizeof(text), "the LU factorisation failed (%s, %s)", what.c_str(),
+                  error == MAT_FACTOR_NUMERIC_ZEROPIVOT ? "zero pivot" : "PC failed");
+    throw LinearSolveFailure(text, true);
+  }
+  std::snprintf(text, sizeof(text), "the %s solver did not converge in %d iterations (%s, %s)",
+                iterative() ? "Krylov" : "linear", int(its), reason_name(reason).c_str(),
+                what.c_str());
+  throw LinearSolveFailure(text, true);
+}
+
+PetscErrorCode LinearSolverSetup::pre_solve(KSP, Vec b, Vec, void* ctx)
+{
+  return VecPointwiseMult(b, b, static_cast<LinearSolverSetup*>(ctx)->_s);
+}
+
+PetscErrorCode LinearSolverSetup::post_solve(KSP, Vec b, Vec x, void* ctx)
+{
+  const Vec s = static_cast<LinearSolverSetup*>(ctx)->_s;
+  PetscErrorCode code = VecPointwiseMult(x, x, s);
+  return code ? code : VecPointwiseDivide(b, b, s);
+}
+} // namespace piezocontact

@@ -1,0 +1,103 @@
+// What the Newton KSP needs beyond its PETSc options.
+//
+// Either solver: with pc_type fieldsplit, the u and phi dofs as named
+// splits (u blocked by d, for nodal AMG), and a check after every solve
+// (dolfinx's KrylovSolver ignores a failed solve; here a failed LU or
+// Krylov solve is an exception the time loop handles).
+//
+// The iterative solver (solver.linear = "iterative"; docs/solvers.md):
+//  * Jacobi scaling as a change of variables: J is scaled in place to
+//    S J S, S = |diag J|^-1/2 (the variables of the fieldwise Newton test,
+//    where u and phi are both O(1); in SI units their blocks differ by 1e22),
+//    and hooks around every KSPSolve on this KSP map b <- S b before and
+//    x <- S x after. Right-preconditioned GMRES then minimises the scaled
+//    residual, the norm the Newton test measures.
+//  * the Krylov tolerance of each solve tied to the Newton test: stop when
+//    the scaled residual is half what Newton would accept for the current
+//    iterate (FieldwiseConvergence::krylov_atol), so that an unchanged
+//    operator gives Newton's iteration counts of LU.
+//  * the rigid body modes (d translations, d(d-1)/2 rotations) as the near
+//    null space of the u block, times D^1/2 (the modes of S K S), for AMG
+//    on that block; rotations only for BoomerAMG (it has the translations).
+//  * the preconditioner is set up when J changes, timed here (fieldsplit
+//    sets its blocks up lazily in the first solve otherwise), kept while J
+//    is unchanged, and lagged across changes of the contact part only (the
+//    penalty rows are a boundary term of the u block) until a solve needs
+//    twice the iterations of the first one on a fresh set-up.
+#pragma once
+
+#include "problem.h"
+#include "settings.h"
+
+#include <limits>
+#include <petscksp.h>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace piezocontact
+{
+/// A linear solve that failed (Krylov divergence, a failed factorisation).
+/// `retry`: a shorter time step may cure it (not an out-of-memory LU)
+class LinearSolveFailure : public std::runtime_error
+{
+public:
+  LinearSolveFailure(const std::string& what, bool retry)
+      : std::runtime_error(what), retry(retry)
+  {
+  }
+  bool retry;
+};
+
+class LinearSolverSetup
+{
+public:
+  /// After the KSP's options were set: splits and hooks
+  LinearSolverSetup(KSP ksp, const Problem& p, LinearSolver kind);
+  ~LinearSolverSetup();
+  LinearSolverSetup(const LinearSolverSetup&) = delete;
+  LinearSolverSetup& operator=(const LinearSolverSetup&) = delete;
+
+  bool iterative() const { return _kind == LinearSolver::iterative; }
+
+  /// J was assembled anew (unscaled) into M: scale it (iterative), hand it
+  /// to the KSP and set up the preconditioner, sub-blocks included (lagged
+  /// if allowed: not after a change of k). Returns true if it was set up
+  /// anew (false: lagged)
+  bool operator_changed(Mat M, bool k_changed);
+
+  /// The absolute tolerance of the next Newton solve, in the scaled norm
+  void set_newton_tolerance(double atol);
+
+  /// For other solves with the same operator (floating electrodes' unit
+  /// responses): a relative tolerance
+  void set_relative_tolerance();
+
+  /// After a solve: throw LinearSolveFailure if it failed; returns its
+  /// Krylov iterations
+  int check_solve(const std::string& what);
+
+  int setups = 0, lagged = 0;
+
+private:
+  void make_splits(const Problem& p);
+  void scale(Mat M);
+  void attach_near_nullspace();
+  void set_up_blocks();
+  static PetscErrorCode pre_solve(KSP, Vec b, Vec x, void* ctx);
+  static PetscErrorCode post_solve(KSP, Vec b, Vec x, void* ctx);
+
+  KSP _ksp;
+  LinearSolver _kind;
+  MPI_Comm _comm;
+  IS _is_u = nullptr, _is_phi = nullptr;
+  Vec _s = nullptr; ///< |diag J|^-1/2 (1 where the diagonal is 0)
+  int _dim;
+  /// coordinates of the owned u nodes, in the u split's order (x, y, z each)
+  std::vector<double> _node_x;
+  PetscReal _rtol = 1e-12;
+  PetscInt _max_it = 500;
+  int _its_min = std::numeric_limits<int>::max(); ///< fewest its since the set-up
+  bool _stale = false; ///< the lagged preconditioner has become too weak
+};
+} // namespace piezocontact
