@@ -75,6 +75,8 @@ CASES = {
     "--set index beyond any list": (SQUARE, ["probes.99999999999999999999=1"],
                                     "--set probes.99999999999999999999: cannot set "
                                     "'99999999999999999999' here"),
+    "unknown linear solver": (SQUARE, ["solver.linear=bogus"],
+                              'solver.linear = "bogus": expected one of direct, iterative'),
     "unknown PETSc type": (SQUARE, ["solver.petsc_options.pc_type=bogus"],
                            "solver.petsc_options.pc_type = bogus: refused by PETSc: Unable "
                            "to find requested PC type bogus"),
@@ -205,7 +207,14 @@ def main():
             "stops with exit code 3, the message names the time, the step and both "
             "relative residuals, and summary.json (status \"failed\", with its events) "
             "and the XDMF file keep every step computed before. The reference engine "
-            "has fixed steps: it stops at the first failure, with exit code 3.\n",
+            "has fixed steps: it stops at the first failure, with exit code 3. "
+            "A linear solve that fails (dolfinx's Krylov solver would go on with its "
+            "garbage) is a failed Newton iteration: with `solver.linear = \"iterative\"`, "
+            "`the Krylov solver did not converge in N iterations (DIVERGED_ITS, Newton "
+            "step)` joins the message; an LU factorisation out of memory stops the run at "
+            "once, exit code 3: `error: the LU factorisation ran out of memory (Newton "
+            "step) at t = 0.0625: solver.linear = \"iterative\" needs a fraction of the "
+            "memory`. Checked by `tests/test_linear_solver.py`.\n",
             "A write error (a full disk) stops the run with exit code 4 and one line, "
             "`error: cannot write FILE: No space left on device`; summary.json says "
             "\"failed\" with that error when there is room for it, and every earlier step "

@@ -303,11 +303,10 @@ int LinearSolverSetup::check_solve(const std::string& what)
     }
     if (error == MAT_FACTOR_OUTMEMORY)
     {
-      std::snprintf(text, sizeof(text),
-                    "the LU factorisation ran out of memory (%s): "
-                    "use solver.linear = \"iterative\"",
+      std::snprintf(text, sizeof(text), "the LU factorisation ran out of memory (%s)",
                     what.c_str());
-      throw LinearSolveFailure(text, false);
+      throw LinearSolveFailure(text, false,
+                               "solver.linear = \"iterative\" needs a fraction of the memory");
     }
     std::snprintf(text, sizeof(text), "the LU factorisation failed (%s, %s)", what.c_str(),
                   error == MAT_FACTOR_NUMERIC_ZEROPIVOT ? "zero pivot" : "PC failed");

@@ -38,15 +38,17 @@
 namespace piezocontact
 {
 /// A linear solve that failed (Krylov divergence, a failed factorisation).
-/// `retry`: a shorter time step may cure it (not an out-of-memory LU)
+/// `retry`: a shorter time step may cure it (not an out-of-memory LU);
+/// `hint`: what to do instead
 class LinearSolveFailure : public std::runtime_error
 {
 public:
-  LinearSolveFailure(const std::string& what, bool retry)
-      : std::runtime_error(what), retry(retry)
+  LinearSolveFailure(const std::string& what, bool retry, const std::string& hint = "")
+      : std::runtime_error(what), retry(retry), hint(hint)
   {
   }
   bool retry;
+  std::string hint;
 };
 
 class LinearSolverSetup

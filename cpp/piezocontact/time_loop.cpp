@@ -232,7 +232,8 @@ json run(Problem& problem, const RunSettings& settings, const std::filesystem::p
     catch (const LinearSolveFailure& e)
     {
       if (!e.retry)
-        record.fail(std::string(e.what()) + " at t = " + json(t).dump());
+        record.fail(std::string(e.what()) + " at t = " + json(t).dump()
+                    + (e.hint.empty() ? "" : ": " + e.hint));
       outcome = {newton.iteration(), false};
       linear_failure = e.what();
     }
