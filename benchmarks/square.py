@@ -5,8 +5,8 @@ is unchanged), the same C++ loop from Python (`python3 -m piezocontact`, JIT
 kernels, cache warmed by an untimed run first) and the reference engine
 (petsc4py SNES, a factorisation per iteration), serial and on 2 MPI
 processes; the cost's growth with the number of dofs; the C++ run against
-its own ideal; the whole Figure-3 study; an iterative solver against LU,
-per linear solve.
+its own ideal; the whole Figure-3 study. (Direct against iterative:
+benchmarks/linear_solvers.py.)
 
     /usr/bin/python3 benchmarks/square.py                  # prints markdown
     /usr/bin/python3 benchmarks/square.py --write docs/benchmarks.md
@@ -37,14 +37,6 @@ ROOT = Path(__file__).resolve().parents[1]
 SQUARE = ROOT / "demos" / "square.json"
 ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
 NO_OUTPUT = ["output.xdmf=false", "output.nodal=none"]
-ITERATIVE = {  # GMRES, one AMG V-cycle per field, nodal AMG on the u block
-    "ksp_type": "gmres", "ksp_rtol": 1e-12, "ksp_max_it": 2000, "ksp_gmres_restart": 200,
-    "pc_type": "fieldsplit", "pc_fieldsplit_type": "multiplicative",
-    "fieldsplit_u_ksp_type": "preonly", "fieldsplit_u_pc_type": "hypre",
-    "fieldsplit_u_pc_hypre_boomeramg_nodal_coarsen": 6,
-    "fieldsplit_u_pc_hypre_boomeramg_vec_interp_variant": 3,
-    "fieldsplit_phi_ksp_type": "preonly", "fieldsplit_phi_pc_type": "hypre"}
-
 
 BUILD = Path(os.environ.get("PIEZO_BUILD", ROOT / "build"))
 ENV["PYTHONPATH"] = str(BUILD / "python")  # this tree's package
@@ -148,34 +140,11 @@ def study(finest, lines):
     print(lines[-1], flush=True)
 
 
-def iterative(sizes, lines):
-    lines += ["\n### Iterative solver against LU, per linear solve (C++, 4 steps, k = 1/n)\n",
-              "GMRES (rtol 1e-12) preconditioned by a multiplicative fieldsplit: BoomerAMG on "
-              "u (nodal coarsening, 2x2 blocks) and on phi. With LU the factorisation is kept "
-              "while J is unchanged, so a step costs one triangular solve.\n",
-              "| n | dofs | LU: factorisation (s) | LU: triangular solve (s) | iterative: "
-              "setup + solve per Newton iteration (s) | Krylov it. per solve |",
-              "|---|---|---|---|---|---|"]
-    opts = [f"solver.petsc_options={json.dumps(ITERATIVE)}"]
-    for n in sizes:
-        lu, it = run("cpp", n, steps=4), run("cpp", n, steps=4, extra=opts)
-        o = lu["timing"]["operations"]
-        its = sum(s["newton_iterations"] for s in it["steps"])
-        kry = sum(s["krylov_iterations"] for s in it["steps"]) / its
-        oi = it["timing"]["operations"]
-        per = (oi["factorisation"]["seconds"] + oi["triangular_solve"]["seconds"]) / its
-        lines.append(f"| {n} | {lu['dofs']} | {o['factorisation']['seconds'] / o['factorisation']['count']:.3f} "
-                     f"| {o['triangular_solve']['seconds'] / o['triangular_solve']['count']:.4f} "
-                     f"| {per:.3f} | {kry:.0f} |")
-        print(lines[-1], flush=True)
-
-
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--sizes", type=int, nargs="+", default=[32, 64, 128, 256])
     ap.add_argument("--no-mpi", action="store_true")
     ap.add_argument("--no-study", action="store_true")
-    ap.add_argument("--no-iterative", action="store_true")
     ap.add_argument("--repeat", type=int, default=3,
                     help="runs of the C++ loop per size and engine; the fastest is kept")
     ap.add_argument("--write", help="also write the markdown report to this file")
@@ -198,8 +167,6 @@ def main():
         comparison_table(args.sizes, 2, args.repeat, lines)
     if not args.no_study:
         study(max(args.sizes), lines)
-    if not args.no_iterative:
-        iterative(args.sizes, lines)
     lines.append(f"\n(benchmark wall time {time.perf_counter() - t0:.0f} s)")
     report = "\n".join(lines) + "\n"
     print(report)
