@@ -27,6 +27,7 @@ import json
 import math
 import os
 import platform
+import shlex
 import subprocess
 import sys
 import tempfile
@@ -51,12 +52,15 @@ def run(solver, n, np_=1, steps=None, extra=()):
     exe = ENGINES[solver]
     steps = steps or n
     with tempfile.TemporaryDirectory() as out, tempfile.TemporaryDirectory() as mem:
-        timed = ["/usr/bin/time", "-f", "%M", "-o", f"{mem}/rss.%q{{OMPI_COMM_WORLD_RANK}}"]
-        cmd = (["mpirun", "-n", str(np_)] if np_ > 1 else []) + timed + exe + [
-            "--config", str(SQUARE), "--output", out, "--quiet"]
+        args = exe + ["--config", str(SQUARE), "--output", out, "--quiet"]
         for o in [f"mesh.n={n}", f"time.steps={steps}", f"time.T={steps / n}",
                   *NO_OUTPUT, *extra]:
-            cmd += ["--set", o]
+            args += ["--set", o]
+        # one file per process: the shell expands the rank (mpirun and
+        # /usr/bin/time do not)
+        timed = (f"exec /usr/bin/time -f %M -o {mem}/rss.${{OMPI_COMM_WORLD_RANK:-0}} "
+                 + " ".join(shlex.quote(a) for a in args))
+        cmd = (["mpirun", "-n", str(np_)] if np_ > 1 else []) + ["sh", "-c", timed]
         t0 = time.perf_counter()
         subprocess.run(cmd, check=True, env=ENV, capture_output=True)
         wall = time.perf_counter() - t0
