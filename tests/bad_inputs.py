@@ -214,7 +214,9 @@ def main():
             "step)` joins the message; an LU factorisation out of memory stops the run at "
             "once, exit code 3: `error: the LU factorisation ran out of memory (Newton "
             "step) at t = 0.0625: solver.linear = \"iterative\" needs a fraction of the "
-            "memory`. Checked by `tests/test_linear_solver.py`.\n",
+            "memory` (a MUMPS workspace under-estimate names `mat_mumps_icntl_14`); a "
+            "failed solve before the first step (the first Jacobian's) ends the run the "
+            "same way. Checked by `tests/test_linear_solver.py`.\n",
             "A write error (a full disk) stops the run with exit code 4 and one line, "
             "`error: cannot write FILE: No space left on device`; summary.json says "
             "\"failed\" with that error when there is room for it, and every earlier step "

@@ -104,14 +104,17 @@ FloatingPotentials::FloatingPotentials(Problem& p,
   _M.assign(_index.size() * _index.size(), 0.0);
 }
 
-void FloatingPotentials::factorised(KSP ksp)
+void FloatingPotentials::factorised(KSP ksp, const std::function<void()>& check)
 {
   if (empty())
     return;
   ScopedTimer timer(stats, "floating electrodes");
   const std::size_t n = _index.size();
   for (std::size_t f = 0; f < n; ++f)
+  {
     KSPSolve(ksp, _l[f].vec(), _z[f].vec());
+    check();
+  }
   for (std::size_t e = 0; e < n; ++e)
     for (std::size_t f = 0; f < n; ++f)
       VecDot(_c[e].vec(), _z[f].vec(), &_M[e * n + f]);

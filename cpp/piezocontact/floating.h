@@ -29,6 +29,7 @@
 #include "timing.h"
 
 #include <dolfinx/la/petsc.h>
+#include <functional>
 #include <optional>
 #include <petscksp.h>
 #include <span>
@@ -45,8 +46,9 @@ public:
 
   bool empty() const { return _index.empty(); }
 
-  /// After J_D was factorised in `ksp`: the unit responses and the border
-  void factorised(KSP ksp);
+  /// After J_D was factorised in `ksp`: the unit responses and the border;
+  /// `check` after each solve (it throws if the solve failed)
+  void factorised(KSP ksp, const std::function<void()>& check);
 
   /// Charge residuals from an unconstrained residual (owned entries, before
   /// its Dirichlet rows are set) at the iterate `x` (owned entries)

@@ -1,5 +1,7 @@
 #include "linear_solver.h"
 
+#include <petscmat.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -11,8 +13,7 @@ namespace
 {
 std::string reason_name(KSPConvergedReason reason)
 {
-  // KSPConvergedReasons is indexed from its most negative value
-  return KSPConvergedReasons[reason];
+  return KSPConvergedReasons[reason]; // PETSc offsets the table: negative indices valid
 }
 
 bool is_type(PC pc, PCType type)
@@ -56,6 +57,7 @@ LinearSolverSetup::~LinearSolverSetup()
     KSPSetPostSolve(_ksp, nullptr, nullptr);
   }
   VecDestroy(&_s);
+  VecDestroy(&_b_saved);
   ISDestroy(&_is_u);
   ISDestroy(&_is_phi);
 }
@@ -150,7 +152,7 @@ bool LinearSolverSetup::operator_changed(Mat M, bool k_changed)
     return false;
   }
   ++setups;
-  _its_min = std::numeric_limits<int>::max();
+  _best_rate = std::numeric_limits<double>::infinity();
   _stale = false;
   set_up_blocks();
   return true;
@@ -277,56 +279,105 @@ int LinearSolverSetup::check_solve(const std::string& what)
 {
   KSPConvergedReason reason;
   KSPGetConvergedReason(_ksp, &reason);
+  // the same verdict on every rank (a PC can fail on one rank only)
+  int worst = reason;
+  MPI_Allreduce(MPI_IN_PLACE, &worst, 1, MPI_INT, MPI_MIN, _comm);
+  reason = static_cast<KSPConvergedReason>(std::min<int>(worst, reason));
   PetscInt its = 0;
   KSPGetIterationNumber(_ksp, &its);
   if (reason >= 0)
   {
-    if (iterative())
+    PetscReal r = 0.0;
+    KSPGetResidualNorm(_ksp, &r);
+    if (iterative() and its >= 5 and r > 0.0 and _b_norm > r)
     {
-      _its_min = std::min(_its_min, int(its));
-      // a lagged preconditioner that has become weak: set it up at the next change
-      _stale = its > 2 * _its_min + 5;
+      // iterations per decade: comparable between solves of any tolerance
+      const double rate = its / std::max(0.5, std::log10(_b_norm / r));
+      _best_rate = std::min(_best_rate, rate);
+      _stale = _stale or rate > 2.0 * _best_rate;
     }
     return its;
   }
   char text[400];
   if (reason == KSP_DIVERGED_PC_FAILED and !iterative())
-  {
-    PC pc;
-    KSPGetPC(_ksp, &pc);
-    Mat F = nullptr;
-    MatFactorError error = MAT_FACTOR_NOERROR;
-    if (is_type(pc, PCLU) or is_type(pc, PCCHOLESKY))
-    {
-      PCFactorGetMatrix(pc, &F);
-      MatFactorGetError(F, &error);
-    }
-    if (error == MAT_FACTOR_OUTMEMORY)
-    {
-      std::snprintf(text, sizeof(text), "the LU factorisation ran out of memory (%s)",
-                    what.c_str());
-      throw LinearSolveFailure(text, false,
-                               "solver.linear = \"iterative\" needs a fraction of the memory");
-    }
-    std::snprintf(text, sizeof(text), "the LU factorisation failed (%s, %s)", what.c_str(),
-                  error == MAT_FACTOR_NUMERIC_ZEROPIVOT ? "zero pivot" : "PC failed");
-    throw LinearSolveFailure(text, true);
-  }
+    factorisation_failed(what);
   std::snprintf(text, sizeof(text), "the %s solver did not converge in %d iterations (%s, %s)",
                 iterative() ? "Krylov" : "linear", int(its), reason_name(reason).c_str(),
                 what.c_str());
   throw LinearSolveFailure(text, true);
 }
 
-PetscErrorCode LinearSolverSetup::pre_solve(KSP, Vec b, Vec, void* ctx)
+// An LU (or Cholesky) that failed: out of memory stops the run, with the
+// way out; MUMPS says which (its INFOG(1)), other packages less
+void LinearSolverSetup::factorisation_failed(const std::string& what) const
 {
-  return VecPointwiseMult(b, b, static_cast<LinearSolverSetup*>(ctx)->_s);
+  PC pc;
+  KSPGetPC(_ksp, &pc);
+  char text[400];
+  if (!is_type(pc, PCLU) and !is_type(pc, PCCHOLESKY))
+  {
+    std::snprintf(text, sizeof(text), "the preconditioner failed (%s)", what.c_str());
+    throw LinearSolveFailure(text, true);
+  }
+  Mat F = nullptr;
+  PCFactorGetMatrix(pc, &F);
+  MatFactorError error = MAT_FACTOR_NOERROR;
+  MatFactorGetError(F, &error);
+#if PETSC_HAVE_MUMPS
+  MatSolverType package = nullptr;
+  MatFactorGetSolverType(F, &package);
+  PetscBool mumps = PETSC_FALSE;
+  PetscStrcmp(package, MATSOLVERMUMPS, &mumps);
+  PetscInt info = 0;
+  if (mumps)
+    MatMumpsGetInfog(F, 1, &info);
+  if (mumps and (info == -8 or info == -9 or info == -14 or info == -15 or info == -17
+                 or info == -20))
+  {
+    // its workspace estimate was too small: more slack usually cures it
+    std::snprintf(text, sizeof(text),
+                  "the LU factorisation failed (%s): MUMPS INFOG(1) = %d, its workspace "
+                  "estimate was too small",
+                  what.c_str(), int(info));
+    throw LinearSolveFailure(text, false,
+                             "raise solver.petsc_options.mat_mumps_icntl_14 (percent of slack, "
+                             "default 20), or use solver.linear = \"iterative\"");
+  }
+#endif
+  if (error == MAT_FACTOR_OUTMEMORY)
+  {
+    std::snprintf(text, sizeof(text), "the LU factorisation ran out of memory (%s)", what.c_str());
+    throw LinearSolveFailure(text, false,
+                             "solver.linear = \"iterative\" needs a fraction of the memory");
+  }
+  std::snprintf(text, sizeof(text), "the LU factorisation failed (%s, %s)", what.c_str(),
+                error == MAT_FACTOR_NUMERIC_ZEROPIVOT ? "zero pivot" : "PC failed");
+  throw LinearSolveFailure(text, true);
+}
+
+// The caller's b is kept and restored exactly (the floating electrodes
+// reuse theirs across set-ups); a nonzero initial guess is mapped too
+PetscErrorCode LinearSolverSetup::pre_solve(KSP ksp, Vec b, Vec x, void* ctx)
+{
+  auto* self = static_cast<LinearSolverSetup*>(ctx);
+  if (!self->_b_saved)
+    PetscCall(VecDuplicate(b, &self->_b_saved));
+  PetscCall(VecCopy(b, self->_b_saved));
+  PetscCall(VecPointwiseMult(b, b, self->_s));
+  PetscReal norm;
+  PetscCall(VecNorm(b, NORM_2, &norm));
+  self->_b_norm = norm;
+  PetscBool guess;
+  PetscCall(KSPGetInitialGuessNonzero(ksp, &guess));
+  if (guess)
+    PetscCall(VecPointwiseDivide(x, x, self->_s));
+  return 0;
 }
 
 PetscErrorCode LinearSolverSetup::post_solve(KSP, Vec b, Vec x, void* ctx)
 {
-  const Vec s = static_cast<LinearSolverSetup*>(ctx)->_s;
-  PetscErrorCode code = VecPointwiseMult(x, x, s);
-  return code ? code : VecPointwiseDivide(b, b, s);
+  auto* self = static_cast<LinearSolverSetup*>(ctx);
+  PetscCall(VecPointwiseMult(x, x, self->_s));
+  return VecCopy(self->_b_saved, b);
 }
 } // namespace piezocontact

@@ -23,7 +23,10 @@
 //    sets its blocks up lazily in the first solve otherwise), kept while J
 //    is unchanged, and lagged across changes of the contact part only (the
 //    penalty rows are a boundary term of the u block) until a solve needs
-//    twice the iterations of the first one on a fresh set-up.
+//    more than twice the iterations per decade of residual reduction of the
+//    best solve since the set-up. (GAMG keeps its prolongator across
+//    set-ups with the same sparsity, PETSc's default: a set-up recomputes
+//    the coarse operators.)
 #pragma once
 
 #include "problem.h"
@@ -86,6 +89,7 @@ private:
   void scale(Mat M);
   void attach_near_nullspace();
   void set_up_blocks();
+  [[noreturn]] void factorisation_failed(const std::string& what) const;
   static PetscErrorCode pre_solve(KSP, Vec b, Vec x, void* ctx);
   static PetscErrorCode post_solve(KSP, Vec b, Vec x, void* ctx);
 
@@ -97,9 +101,12 @@ private:
   int _dim;
   /// coordinates of the owned u nodes, in the u split's order (x, y, z each)
   std::vector<double> _node_x;
+  Vec _b_saved = nullptr; ///< the caller's right-hand side, restored exactly
+  double _b_norm = 0.0;   ///< ||S b|| of the current solve
   PetscReal _rtol = 1e-12;
   PetscInt _max_it = 500;
-  int _its_min = std::numeric_limits<int>::max(); ///< fewest its since the set-up
+  /// fewest Krylov iterations per decade of residual reduction since the set-up
+  double _best_rate = std::numeric_limits<double>::infinity();
   bool _stale = false; ///< the lagged preconditioner has become too weak
 };
 } // namespace piezocontact

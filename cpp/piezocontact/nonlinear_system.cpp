@@ -164,8 +164,7 @@ void NonlinearSystem::J(const Vec, Mat M)
   if (!floating.empty())
   {
     linear.set_relative_tolerance();
-    floating.factorised(_ksp);
-    linear.check_solve("a floating electrode's unit response");
+    floating.factorised(_ksp, [this] { linear.check_solve("a floating electrode's unit response"); });
   }
   linear.set_newton_tolerance(_monitor.krylov_atol());
 }

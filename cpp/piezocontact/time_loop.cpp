@@ -162,6 +162,20 @@ json run(Problem& problem, const RunSettings& settings, const std::filesystem::p
   newton.report = false;
   newton.error_on_nonconvergence = false;
 
+  // The Jacobian made before the loop (and its factorisation, or the
+  // floating electrodes' first solves): a failed linear solve there ends
+  // the run as one inside it would after its last halving
+  const auto first_jacobian = [&](const std::string& when)
+  {
+    try
+    {
+      system.J(x, system.A.mat());
+    }
+    catch (const LinearSolveFailure& e)
+    {
+      record.fail(std::string(e.what()) + " " + when + (e.hint.empty() ? "" : ": " + e.hint));
+    }
+  };
   StepControl steps(settings.T, settings.steps, settings.newton.max_step_halvings);
   auto xa = problem.x->x()->mutable_array();
   auto xp = problem.x_prev->x()->mutable_array();
@@ -188,7 +202,7 @@ json run(Problem& problem, const RunSettings& settings, const std::filesystem::p
     record.read_states({xp, x_prev2, xJ});
     std::copy(xJ.begin(), xJ.end(), xa.begin());
     problem.model.constants.at("k")->value[0] = state.k_J;
-    system.J(x, system.A.mat());
+    first_jacobian("at the resumed Jacobian");
     std::copy(xp.begin(), xp.end(), xa.begin());
     steps.restore(state.nominal, state.t, state.k, state.k_last, state.step);
     int rank;
@@ -198,7 +212,7 @@ json run(Problem& problem, const RunSettings& settings, const std::filesystem::p
                   state.t);
   }
   else
-    system.J(x, system.A.mat()); // initial scaling D (and first factorisation)
+    first_jacobian("at the first Jacobian"); // initial scaling D (and first factorisation)
   record.begin(state_now(), states());
 
   const double callbacks_before = callback_seconds(system);
