@@ -35,6 +35,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "benchmarks"))
 from output_cost import write_section  # noqa: E402
+from square import fit_exponent  # noqa: E402
 
 BUILD = Path(os.environ.get("PIEZO_BUILD", ROOT / "build"))
 EXE = str(BUILD / "piezo-contact")
@@ -88,12 +89,6 @@ def figures(s):
             "lagged": ops.get("lagged_preconditioner", 0),
             "solve": ops["triangular_solve"]["seconds"] / max(1, newton),
             "krylov": krylov, "peak_mb": s["peak_mb"], "wall": s["wall_s"]}
-
-
-def fit_exponent(xs, ys):
-    lx, ly = [math.log(x) for x in xs], [math.log(y) for y in ys]
-    mx, my = sum(lx) / len(lx), sum(ly) / len(ly)
-    return sum((a - mx) * (b - my) for a, b in zip(lx, ly)) / sum((a - mx) ** 2 for a in lx)
 
 
 ROW = ("| {label} | {dofs} | {linear} | {np} | {per_step:.2f} | {setup:.2f} ({setups}{lag}) "
