@@ -216,12 +216,14 @@ auto raising_interrupted(F&& f)
 void declare_record(py::module_& m)
 {
   class_<FieldNorms>(m, "FieldNorms", "Norms of one field's residual")
-      .def(constructor([](double residual, double scaled, double relative)
-                    { return FieldNorms{residual, scaled, relative}; }),
-           py::arg("residual"), py::arg("scaled_residual"), py::arg("relative"))
+      .def(constructor([](double residual, double scaled, double relative, double update)
+                    { return FieldNorms{residual, scaled, relative, update}; }),
+           py::arg("residual"), py::arg("scaled_residual"), py::arg("relative"),
+           py::arg("update"))
       .def_ro("residual", &FieldNorms::residual)
       .def_ro("scaled_residual", &FieldNorms::scaled_residual)
-      .def_ro("relative", &FieldNorms::relative);
+      .def_ro("relative", &FieldNorms::relative)
+      .def_ro("update", &FieldNorms::update);
   class_<StepState>(m, "StepState", "The step control after an accepted step")
       .def(constructor(
                [](int step, int nominal, double t, double k, double k_last, double k_J)

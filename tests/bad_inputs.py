@@ -59,8 +59,15 @@ CASES = {
     "malformed JSON": ("BROKEN_JSON", [], "invalid JSON at line 2 column 42: "),
     "config file missing": ("MISSING", [], "cannot read: No such file or directory"),
     "config is a directory": ("DIRECTORY", [], "cannot read: not a regular file"),
-    "number beyond double": ("OVERFLOW", [], "invalid JSON at line 1 column 39: number "
-                             "overflow parsing '1e400' (beyond the range of a double)"),
+    "number beyond double": ("OVERFLOW", [], "mesh.n = 1e400: beyond the range of a double "
+                             "(invalid JSON at line 1 column 39)"),
+    "number beyond double in --set": (SQUARE, ["contact.c_p=1e400"],
+                                      "--set contact.c_p: 1e400: beyond the range of a double"),
+    "top level not an object": ("ARRAY", ["mesh.n=4"], "the top level is an array: a config "
+                                "is one JSON object"),
+    "contact boundary without the contact block": (
+        "NO_CONTACT", [], "contact: missing: boundaries.bottom has \"contact\": true, which "
+        "needs the foundation's contact.c_p and contact.gap"),
     "invalid UTF-8": ("BAD_UTF8", [], "invalid JSON at line 1 column 11: syntax error while "
                       "parsing value - invalid string: ill-formed UTF-8 byte; last read: "
                       "'\"\\xff'"),
@@ -180,6 +187,14 @@ def materialise(case, tmp):
     elif config == "HUGE":
         config = tmp / "huge.json"
         config.write_text(SQUARE.read_text()[:-2] + ', "pad": "' + "x" * (1 << 20) + '"}')
+    elif config == "ARRAY":
+        config = tmp / "array.json"
+        config.write_text("[1, 2]")
+    elif config == "NO_CONTACT":
+        cfg = json.loads(SQUARE.read_text())
+        del cfg["contact"]
+        config = tmp / "no_contact.json"
+        config.write_text(json.dumps(cfg))
     elif config == "NO_CP":
         cfg = json.loads(SQUARE.read_text())
         del cfg["contact"]["c_p"]

@@ -595,6 +595,9 @@ void check_semantics(const json& cfg, const std::string& source)
     const std::string where = join("boundaries", name);
     held = held or bc.contains("displacement");
     const bool contact = bc.value("contact", false);
+    if (contact and !cfg.contains("contact"))
+      fail(source, "contact: missing: " + where + " has \"contact\": true, which needs the "
+                   "foundation's contact.c_p and contact.gap");
     if (bc.contains("displacement") and (bc.contains("traction") or contact))
       fail(source, where + ": a clamped boundary (displacement) cannot also "
                            "carry traction or contact");
@@ -763,6 +766,10 @@ json load_config(const std::string& path,
 json configure(json cfg, const std::vector<std::string>& overrides,
                const std::string& source)
 {
+  // before the overrides, whose messages would blame their keys
+  if (!cfg.is_object())
+    fail(source, std::string("the top level is ") + (cfg.is_array() ? "an " : "a ")
+                     + cfg.type_name() + ": a config is one JSON object ({\"mesh\": ..., ...})");
   for (const auto& o : overrides)
     apply_override(cfg, o, source);
   const json& mesh = cfg.is_object() ? cfg.value("mesh", json()) : json();
@@ -890,8 +897,11 @@ void set_constants(const json& cfg, const ConstantMap& constants,
                    const std::map<std::string, ConstantMap>& loads, const std::string& source)
 {
   set_zero(constants);
-  set_value(constants, "c_p", cfg["contact"]["c_p"]);
-  set_value(constants, "g", cfg["contact"]["gap"]);
+  if (cfg.contains("contact")) // else no contact boundary (check_semantics): zeros
+  {
+    set_value(constants, "c_p", cfg["contact"]["c_p"]);
+    set_value(constants, "g", cfg["contact"]["gap"]);
+  }
   set_value(constants, "k", cfg["time"]["T"].get<double>() / cfg["time"]["steps"].get<double>());
   if (cfg["loads"].contains("body_force"))
     set_value(constants, "f0", value_of(cfg["loads"]["body_force"]));

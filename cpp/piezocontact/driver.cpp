@@ -1,4 +1,5 @@
 #include "driver.h"
+#include "output_lock.h"
 #include "diagnostics.h"
 #include "json_input.h"
 #include "materials.h"
@@ -154,6 +155,7 @@ void prepare_output(const std::filesystem::path& dir, const std::string& source,
 json run_config(const RunRequest& request, MPI_Comm comm, const ModelFactory& make_model,
                 const Engine& engine, const StepObserver& observer)
 {
+  const OutputLock lock(request.output, request.source, comm);
   const RunSettings settings = run_settings(request.cfg);
   check_petsc_options(settings.petsc_options, settings.linear, request.source);
   const QuietPetscErrors quiet; // PETSc failures become exceptions, not dumps

@@ -151,36 +151,45 @@ bool FieldwiseConvergence::check(std::span<const double> x,
 {
   // per field: ||F||^2, ||D^-1/2 F||^2, ||D^1/2 x||^2; fields in name order
   // ("phi", "u"), the sums are order-independent
+  // and ||D^1/2 (x - x_last)||^2, the last Newton update
   std::vector<double> sums;
   const bool first = history.empty();
+  if (first)
+    _x_last.assign(x.begin(), x.end());
   for (const auto& [name, dofs] : _dofs)
   {
-    double si = 0, r = 0, s = 0;
+    double si = 0, r = 0, s = 0, u = 0;
     for (auto i : dofs)
     {
       si += b[i] * b[i];
       r += (b[i] / _sqrt_d[i]) * (b[i] / _sqrt_d[i]);
       s += (x[i] * _sqrt_d[i]) * (x[i] * _sqrt_d[i]);
+      u += ((x[i] - _x_last[i]) * _sqrt_d[i]) * ((x[i] - _x_last[i]) * _sqrt_d[i]);
     }
-    sums.insert(sums.end(), {si, r, s});
+    sums.insert(sums.end(), {si, r, s, u});
   }
+  std::copy(x.begin(), x.end(), _x_last.begin());
   std::vector<double> global(sums.size());
   MPI_Allreduce(sums.data(), global.data(), sums.size(), MPI_DOUBLE, MPI_SUM, _comm);
 
   std::map<std::string, FieldNorms> entry;
-  bool ok = true;
+  bool ok = true, residuals_ok = true;
   double threshold = std::numeric_limits<double>::infinity(), size = 0.0;
   std::vector<double> coupled; // c_f, computed only if a field fails its test
   std::size_t f = 0;
   for (const auto& [name, _] : _dofs)
   {
-    const double si = std::sqrt(global[3 * f]), r = std::sqrt(global[3 * f + 1]),
-                 s = std::sqrt(global[3 * f + 2]);
+    const double si = std::sqrt(global[4 * f]), r = std::sqrt(global[4 * f + 1]),
+                 s = std::sqrt(global[4 * f + 2]), du = std::sqrt(global[4 * f + 3]);
     // The floor is this field's own scale at the solve's first iterate
     if (first)
       _s_start[name] = s;
     double accept = _rtol * s + _atol * _s_start[name];
-    bool converged = r <= accept;
+    // The update bounds the error of the iterate it corrected: the solution
+    // is accepted only after one, so both engines stop on a bound of the
+    // error (the residual alone leaves up to cond(J) rtol in x)
+    bool converged = !first and r <= accept and du <= accept;
+    bool residual_ok = !first and r <= accept;
     double scale = s; // what the test measures r_f against
     // after a Newton step, a field that fails may be zero to the round-off
     // of the terms around it. c_f <= K s_g (the scaled coupling block is
@@ -188,7 +197,7 @@ bool FieldwiseConvergence::check(std::span<const double> x,
     // small (collective: every rank sees the same norms)
     double others = 0.0;
     for (std::size_t g = 0; g < _dofs.size(); ++g)
-      others += g == f ? 0.0 : global[3 * g + 2];
+      others += g == f ? 0.0 : global[4 * g + 2];
     const double bound = 1e3 * std::sqrt(others);
     if (!converged and !first and _A and s <= roundoff * bound and r <= roundoff * bound)
     {
@@ -198,18 +207,23 @@ bool FieldwiseConvergence::check(std::span<const double> x,
       {
         scale = coupled[f];
         accept = roundoff * coupled[f];
-        converged = r <= accept;
+        converged = r <= accept and du <= accept;
+        residual_ok = r <= accept;
       }
     }
     threshold = std::min(threshold, accept);
     size += s * s;
     const double rel = scale > 0 ? r / scale
                                  : (r == 0 ? 0.0 : std::numeric_limits<double>::quiet_NaN());
-    entry[name] = {si, r, rel};
+    entry[name] = {si, r, rel,
+                   first ? std::numeric_limits<double>::quiet_NaN()
+                         : (scale > 0 ? du / scale : (du == 0 ? 0.0 : std::numeric_limits<double>::quiet_NaN()))};
     ok = ok and converged;
+    residuals_ok = residuals_ok and residual_ok;
     ++f;
   }
   history.push_back(entry);
+  _residuals_converged = residuals_ok;
   // a zero field (s_f = 0 at a predictor, or short-circuited) asks for
   // what round-off allows
   _krylov_atol = std::max(0.5 * threshold, 0.1 * roundoff * std::sqrt(size));

@@ -6,15 +6,22 @@
 // so one residual norm sees only u. Both fields are measured in the
 // Jacobi-scaled system D^-1/2 J D^-1/2 (D^1/2 x) = D^-1/2 F, D = |diag J|,
 // where both blocks are O(1). Per field f:
-//   r_f = ||D^-1/2 F||_f,  s_f = ||D^1/2 x||_f,
-// converged when r_f <= rtol s_f + atol s_f^0 for every f, s_f^0 = s_f at
-// the solve's first iterate (the predictor). A field that is zero (phi in a
+//   r_f = ||D^-1/2 F||_f,  s_f = ||D^1/2 x||_f,  d_f = ||D^1/2 dx||_f,
+// converged when r_f <= rtol s_f + atol s_f^0 and d_f <= rtol s_f + atol
+// s_f^0 for every f, s_f^0 = s_f at the solve's first iterate (the
+// predictor), dx the last Newton update. The update bounds the error of the
+// iterate it corrected (the residual alone leaves up to cond(J) rtol in x),
+// so a solve takes at least one update: with the LU kept, one triangular
+// solve and one residual. One update also suffices where it was an exact
+// solve of a problem linear across it (the time loop's exact_update: LU, and
+// J at the new iterate is the J solved with): its error is then the LU's
+// round-off, whatever its size. A field that is zero (phi in a
 // short-circuited piezoelectric) has s_f at round-off and its residual is
 // the round-off of terms that cancel (e eps(u) of neighbouring cells): no
 // rtol s_f can be met. Where s_f <= 1000 eps c_f, c_f the norm of
 // D^-1/2 sum_j |J_ij x_j| over f's rows i and the other fields' columns j
 // (the size of what they put into f's equations), the field is taken as
-// zero and r_f <= 1000 eps c_f accepted. c_f is computed only for a field
+// zero and r_f, d_f <= 1000 eps c_f accepted. c_f is computed only for a field
 // that fails its test after a Newton step (|J| costs a matrix copy). A field that is not zero has s_f
 // of the order of c_f (at D = 0, beta grad phi balances e eps), so the
 // gate never opens for it. Each field in its own scale: a floor
@@ -29,6 +36,7 @@
 #pragma once
 
 #include <dolfinx/la/petsc.h>
+#include <limits>
 #include <map>
 #include <memory>
 #include <mpi.h>
@@ -44,6 +52,9 @@ struct FieldNorms
   double residual;        ///< ||F_f||_2 in SI units
   double scaled_residual; ///< r_f
   double relative;        ///< r_f / s_f (r_f / c_f for a zero field); NaN (null in JSON) if 0 < r_f
+  /// the last Newton update ||D^1/2 dx||_f in the same scale (NaN before
+  /// the first update)
+  double update = std::numeric_limits<double>::quiet_NaN();
 };
 
 class FieldwiseConvergence
@@ -70,6 +81,10 @@ public:
   /// solve starts with an empty `history`.
   bool check(std::span<const double> x, std::span<const double> b);
 
+  /// At the last check, after an update: every field passed the residual
+  /// part of the test (the update part aside)
+  bool residuals_converged() const { return _residuals_converged; }
+
   /// Norms of every recorded iterate of the current solve
   std::vector<std::map<std::string, FieldNorms>> history;
 
@@ -88,6 +103,8 @@ private:
   std::vector<double> _sqrt_d;
   double _rtol, _atol;
   std::map<std::string, double> _s_start; ///< s_f at the solve's first iterate
+  std::vector<double> _x_last;            ///< the last iterate checked (owned entries)
+  bool _residuals_converged = false;
   MPI_Comm _comm;
 };
 } // namespace piezocontact

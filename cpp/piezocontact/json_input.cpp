@@ -36,6 +36,79 @@ std::string reason(const json::exception& e)
     what = what.substr(at + 2);
   return what;
 }
+/// The key path ("mesh.n", "probes.0") of the value being read when a SAX
+/// parse stops: where the DOM parser's errors are only a byte offset
+class KeyPath : public json::json_sax_t
+{
+public:
+  std::string path() const
+  {
+    std::string out;
+    for (std::size_t i = 0; i < _frames.size(); ++i)
+    {
+      const Frame& f = _frames[i];
+      // in the innermost array, the failing element is the one after the
+      // last read; outer arrays are at the element that holds it
+      const long index = f.index + (i + 1 == _frames.size() ? 1 : 0);
+      out += (out.empty() ? "" : ".") + (f.array ? std::to_string(index) : f.key);
+    }
+    return out;
+  }
+  bool null() override { return value(); }
+  bool boolean(bool) override { return value(); }
+  bool number_integer(number_integer_t) override { return value(); }
+  bool number_unsigned(number_unsigned_t) override { return value(); }
+  bool number_float(number_float_t, const string_t&) override { return value(); }
+  bool string(string_t&) override { return value(); }
+  bool binary(binary_t&) override { return value(); }
+  bool start_object(std::size_t) override { return open(false); }
+  bool key(string_t& k) override
+  {
+    _frames.back().key = k;
+    return true;
+  }
+  bool end_object() override { return close(); }
+  bool start_array(std::size_t) override { return open(true); }
+  bool end_array() override { return close(); }
+  bool parse_error(std::size_t, const std::string&, const json::exception&) override
+  {
+    return false;
+  }
+
+private:
+  struct Frame
+  {
+    bool array;
+    long index = -1;
+    std::string key;
+  };
+  bool value()
+  {
+    if (!_frames.empty() and _frames.back().array)
+      ++_frames.back().index;
+    return true;
+  }
+  bool open(bool array)
+  {
+    value();
+    _frames.push_back({array, -1, ""});
+    return _frames.size() <= static_cast<std::size_t>(max_json_depth);
+  }
+  bool close()
+  {
+    _frames.pop_back();
+    return true;
+  }
+  std::vector<Frame> _frames;
+};
+
+/// The key path at which `text` stops parsing ("" at the top level)
+std::string key_path_of_error(const std::string& text)
+{
+  KeyPath sax;
+  json::sax_parse(text, &sax, json::input_format_t::json, false);
+  return sax.path();
+}
 } // namespace
 
 std::string printable(const std::string& text, std::size_t max)
@@ -90,11 +163,17 @@ json parse_json(const std::string& text, const std::string& source, std::size_t 
     std::string what = reason(e);
     const auto q0 = what.find('\''), q1 = what.rfind('\'');
     std::size_t at = std::string::npos;
+    std::string token;
     if (q0 != std::string::npos and q1 > q0)
-      at = text.find(what.substr(q0 + 1, q1 - q0 - 1));
-    fail(source, "invalid JSON"
+    {
+      token = what.substr(q0 + 1, q1 - q0 - 1);
+      at = text.find(token);
+    }
+    const std::string key = key_path_of_error(text);
+    fail(source, (key.empty() ? std::string() : printable(key, 120) + " = ")
+                     + printable(token, 40) + ": beyond the range of a double (invalid JSON"
                      + (at == std::string::npos ? std::string() : " at " + position(text, at))
-                     + ": " + printable(what, 160) + " (beyond the range of a double)");
+                     + ")");
   }
   catch (const std::length_error& e)
   {

@@ -38,6 +38,14 @@ public:
   /// Newton's update after a linear solve (checked: LinearSolveFailure)
   void update(Vec dx, Vec x);
 
+  /// Whether the last update solved the problem exactly (to the LU's
+  /// round-off): the solve was direct, and the Jacobian at the current
+  /// iterate is the one it used (same contact part, same k), so that F is
+  /// affine across the update (with the piecewise-linear p: the same set of
+  /// quadrature points in contact at both ends) and F(x) is the LU's
+  /// residual. Collective.
+  bool exact_update();
+
   /// The residual vector and the Jacobian matrix (RAII: PETSc objects
   /// destroyed with the system)
   dolfinx::la::petsc::Vector b;

@@ -192,6 +192,7 @@ json Record::accept(StepState state, const SolveReport& report, const StateViews
   const auto& last = report.history.empty() ? none : report.history.back();
   step["residual_norms"] = fields_json(last, &FieldNorms::residual);
   step["relative_residuals"] = fields_json(last, &FieldNorms::relative);
+  step["relative_updates"] = fields_json(last, &FieldNorms::update);
   step["residual_history"] = json::array();
   for (const auto& h : report.history)
     step["residual_history"].push_back(fields_json(h, &FieldNorms::relative));
@@ -220,7 +221,10 @@ json Record::accept(StepState state, const SolveReport& report, const StateViews
     step["reactions"][name] = f;
   if (!problem.electrodes.empty())
     step["electrodes"] = electrodes_json(r, report.k);
-  check_balance(step, problem.force_balance(r));
+  const ForceBalance balance = problem.force_balance(r);
+  // the size of what the supports carry: a reaction's round-off is of it
+  step["support_force"] = balance.supported;
+  check_balance(step, balance);
   step["krylov_iterations"] = report.krylov_iterations;
   step["k"] = report.k;
   if (!problem.model.squared_errors.empty())

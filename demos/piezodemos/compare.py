@@ -44,6 +44,74 @@ def probe_differences(run, ref):
     return out
 
 
+# Agreement of two engines: each quantity against its run-wide size (the
+# largest magnitude it takes over the run's steps: probes per field, a force,
+# a reaction, an electrode's charge), and value by value against the value,
+# floored at VALUE_FLOOR of that size (a value at the round-off of its
+# quantity, phi on a grounded electrode, has no relative difference)
+VALUE_FLOOR = 1e-3
+
+
+def step_quantities(summary):
+    """{quantity: array (steps, components)} of every compared output."""
+    steps = summary["steps"]
+    out = {"probes.u": [[c for p in s["probes"] for c in p["u"]] for s in steps],
+           "probes.phi": [[p["phi"] for p in s["probes"]] for s in steps],
+           "contact_force": [s["contact_force"] for s in steps]}
+    if steps[0].get("max_penetration") is not None:  # null without a contact boundary
+        out["max_penetration"] = [[s["max_penetration"]] for s in steps]
+    for name in steps[0].get("reactions", {}):
+        out[f"reactions.{name}"] = [s["reactions"][name] for s in steps]
+    for name, e in steps[0].get("electrodes", {}).items():
+        for key in ("potential", "charge", "reaction_charge", "current"):
+            if key in e:
+                out[f"electrodes.{name}.{key}"] = [[s["electrodes"][name][key]] for s in steps]
+    return {k: np.asarray(v, float).reshape(len(steps), -1) for k, v in out.items()}
+
+
+def agreement(run, ref):
+    """{quantity: (largest |a - b| / run-wide size, largest value-by-value
+    relative difference)} over every step of two runs of one config. A force
+    (contact force, a reaction) is a sum of nodal forces: its size is at
+    least that of the forces the supports carry (`support_force`, the sum
+    of |nodal reaction|), of which its round-off is (a clamp that holds a
+    body loaded only electrically has a net reaction of 1e-15 N/m)."""
+    qa, qb = step_quantities(run), step_quantities(ref)
+    if len(run["steps"]) != len(ref["steps"]) or set(qa) != set(qb):
+        raise ValueError("the runs have different steps or outputs")
+    supported = max(s.get("support_force", 0.0) for s in ref["steps"])
+    # an electrode quantity is measured against the largest of its kind
+    # (an open circuit's charge is zero to the round-off of the others')
+    kind = {key: key.rsplit(".", 1)[1].replace("reaction_charge", "charge")
+            for key in qb if key.startswith("electrodes.")}
+    kind_size = {}
+    for key, k in kind.items():
+        kind_size[k] = max(kind_size.get(k, 0.0), float(np.max(np.abs(qb[key]))))
+    out = {}
+    for key, b in qb.items():
+        a = qa[key]
+        size = float(np.max(np.abs(b), initial=0.0))
+        if key == "contact_force" or key.startswith("reactions."):
+            size = max(size, supported)
+        if key in kind:
+            size = kind_size[kind[key]]
+        diff = np.abs(a - b)
+        if size == 0.0:
+            out[key] = (float(np.max(diff, initial=0.0)), float(np.max(diff, initial=0.0)))
+            continue
+        floor = np.maximum(np.abs(b), VALUE_FLOOR * size)
+        out[key] = (float(np.max(diff)) / size, float(np.max(diff / floor)))
+    return out
+
+
+def worst_agreement(run, ref):
+    """(quantity, of size, value by value): the largest of each metric."""
+    table = agreement(run, ref)
+    of_size = max(table.items(), key=lambda kv: kv[1][0])
+    by_value = max(table.items(), key=lambda kv: kv[1][1])
+    return of_size[0], of_size[1][0], by_value[0], by_value[1][1]
+
+
 class FieldComparer:
     """P1 functions on the config's mesh filled from nodal files."""
 

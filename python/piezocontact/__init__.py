@@ -6,7 +6,17 @@ JIT-compiles from the UFL of forms/.
     summary = piezocontact.solve("demos/square.json", output="out/square")
 """
 
-from .api import load, solve
-from .cpp import ConfigError, Interrupted, NewtonFailure, OutputError
+import sys
+
+if sys.argv[:1] == ["-m"]:  # being imported by `python3 -m piezocontact[.x]`
+    from . import _signals
+    _signals.quiet_until_run()
+
+from . import _quiet  # noqa: E402
+
+_quiet.install()  # before anything JIT-compiles
+
+from .api import load, solve  # noqa: E402
+from .cpp import ConfigError, Interrupted, NewtonFailure, OutputError  # noqa: E402
 
 __all__ = ["solve", "load", "ConfigError", "NewtonFailure", "OutputError", "Interrupted"]

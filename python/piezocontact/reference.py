@@ -22,6 +22,8 @@ from ._compat import dirichletbcs, petsc_vec
 # Converged when each field's increment is this small against the field;
 # far below the 1e-8 at which the engines are compared
 INCREMENT_RTOL = 1e-11
+# What double precision can promise of a sum of many terms
+ROUNDOFF = 1e3 * np.finfo(float).eps
 
 
 class _Newton:
@@ -59,6 +61,10 @@ class _Newton:
         self.history = []
         self.imbalance = 0.0  # force_imbalance at the last iterate
         self.assembly_s = 0.0
+        # rows and columns of each field: owned, not Dirichlet (local indices)
+        bc = np.asarray(problem.bc_dofs)
+        self.free = {f: np.setdiff1d(d, bc) for f, d in self.fields.items()}
+        self._coupling = None  # ||J_fg||_inf of the Jacobian in use
 
     def _F(self, snes, x, F):
         t0 = time.perf_counter()
@@ -88,7 +94,61 @@ class _Newton:
             A.zeroEntries()
             fem.petsc.assemble_matrix(A, self.J_form, bcs=self.bcs)
             A.assemble()
+        self._coupling = None
         self.assembly_s += time.perf_counter() - t0
+
+    def _block_norms(self):
+        """||J_fg||_inf of the free rows of f and columns of g != f, per f."""
+        if self._coupling is None:
+            start = self.A.getOwnershipRange()[0]
+            n = self.A.getLocalSize()[0]
+            comm = self.A.getComm()
+            index = {f: PETSc.IS().createGeneral(
+                (start + d[d < n]).astype(PETSc.IntType), comm=comm)
+                for f, d in self.free.items()}
+            self._coupling = {}
+            for f in index:
+                self._coupling[f] = max(
+                    (self.A.createSubMatrix(index[f], index[g]).norm(PETSc.NormType.INFINITY)
+                     for g in index if g != f), default=0.0)
+        return self._coupling
+
+    def _zero_fields(self, x, dx, failing):
+        """Of the fields that failed the increment test, those zero to
+        round-off (phi with every electrode grounded): their own terms,
+        J_ff x_f, and the step's, J_ff dx_f, are below the round-off of the
+        coupling terms in their equations, ||J_fg||_inf ||x_g||_inf (g != f).
+        Such a field has no size to measure an increment against. {field:
+        size of its terms relative to the coupling}."""
+        if self.floating or not failing:
+            return {}  # the constrained layout of the floating case: no zero rule
+        n = x.getLocalSize()
+        size = {f: abs(x.getArray(readonly=True)[d[d < n]]) for f, d in self.fields.items()}
+        comm = self.x.function_space.mesh.comm
+        x_inf = {f: comm.allreduce(float(np.max(v, initial=0.0)), op=_MAX)
+                 for f, v in size.items()}
+        coupling = self._block_norms()
+        out = {}
+        for f in failing:
+            c = coupling[f] * max(x_inf[g] for g in self.fields if g != f)
+            own = max(self._own_terms(v, f) for v in (x, dx))
+            if own <= ROUNDOFF * c:
+                out[f] = own / c if c > 0 else 0.0
+        return out
+
+    def _own_terms(self, v, f):
+        """||(J_ff v_f)||_inf over f's free rows."""
+        n = v.getLocalSize()
+        d = self.fields[f][self.fields[f] < n]
+        values = np.zeros(n)
+        values[d] = v.getArray(readonly=True)[d]
+        masked = v.duplicate()
+        masked.setArray(values)
+        y = self.A.createVecLeft()
+        self.A.mult(masked, y)
+        rows = self.free[f][self.free[f] < n]
+        local = float(np.max(np.abs(y.getArray(readonly=True)[rows]), initial=0.0))
+        return self.A.getComm().tompi4py().allreduce(local, op=_MAX)
 
     def _norms(self, v):
         """||v_f||_inf of each field, on every rank."""
@@ -108,8 +168,11 @@ class _Newton:
             return 0
         # x as assembled (with floating electrodes, the solver's own vector
         # keeps stale entries at constrained dofs)
-        dx, x = self._norms(snes.getSolutionUpdate()), self._norms(petsc_vec(self.x))
+        update = snes.getSolutionUpdate()
+        dx, x = self._norms(update), self._norms(petsc_vec(self.x))
         relative = {f: dx[f] / x[f] if x[f] > 0 else 0.0 for f in dx}
+        relative.update(self._zero_fields(
+            petsc_vec(self.x), update, [f for f in relative if relative[f] > INCREMENT_RTOL]))
         self.history.append({f: (F_norms[f], relative[f]) for f in F_norms})
         # Small increments are not enough where the penalty makes J
         # ill-conditioned: the forces must balance too (a physical check,
@@ -157,12 +220,14 @@ def _stalled(history, window=5):
 
 
 def _report(t, k, its, history):
+    nan = float("nan")
     report = cpp.SolveReport()
     report.t, report.k = t, k
     report.newton_iterations = its
     report.factorisations = its
     report.krylov_iterations = its
-    report.history = [{f: cpp.FieldNorms(r, float("nan"), float("nan") if rel is None else rel)
+    report.history = [{f: cpp.FieldNorms(r, float("nan"), nan if rel is None else rel,
+                                         nan if rel is None else rel)
                        for f, (r, rel) in h.items()} for h in history]
     return report
 
