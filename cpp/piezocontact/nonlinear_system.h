@@ -6,8 +6,8 @@
 //    That part is assembled and compared exactly with the last one; if equal,
 //    J is left untouched and PETSc keeps its factorisation. Any law p is
 //    safe: a smooth p changes J_contact at every iterate and J is rebuilt.
-//  * the reactions of clamped boundaries, read from the residual of the
-//    current iterate before the Dirichlet rows are overwritten;
+//  * the residual of the current iterate before the Dirichlet rows are
+//    overwritten (reactions, balance, electrode charges);
 //  * floating electrodes (floating.h): their charge residuals, read there
 //    too, and their unit responses after each factorisation;
 //  * the linear solver's set-up and checks (linear_solver.h);
@@ -56,8 +56,10 @@ public:
   /// iterative: Jacobians that kept the last preconditioner set-up (lagged)
   int lagged = 0;
   LinearSolverSetup linear;
-  /// reaction of each clamped boundary at the last residual evaluation
-  std::map<std::string, std::vector<double>> reactions;
+  /// the residual at the last evaluation before its Dirichlet rows are set
+  /// (owned entries): the accepted step's reactions and charges are read
+  /// from it, with no assembly of their own
+  std::vector<double> unconstrained;
   /// ... and the balance of forces in it
   ForceBalance balance;
   /// The floating electrodes' potentials and charge equations

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <numeric>
+#include <optional>
 
 namespace piezocontact
 {
@@ -183,6 +184,9 @@ json Record::accept(StepState state, const SolveReport& report, const StateViews
                     bool final, const json& timing)
 {
   Problem& problem = _problem;
+  // what the step's record costs beside its files (probes, functionals,
+  // reactions, balance, charges): "diagnostics" in the summary's timing
+  std::optional<ScopedTimer> diagnostics(std::in_place, _diagnostics, "diagnostics");
   problem.update_fields();
   json step = json::object();
   step["t"] = report.t;
@@ -213,11 +217,16 @@ json Record::accept(StepState state, const SolveReport& report, const StateViews
   if (problem.contact_pressure)
     step[problem.dim() == 2 ? "contact_length" : "contact_area"] = in_contact;
   // the unconstrained residual at x_n: reactions, balance, electrode charges
-  const auto residual = problem.assemble(problem.model.F);
-  const auto r = residual.array().subspan(
-      0, problem.W->dofmap()->index_map->size_local() * problem.W->dofmap()->index_map_bs());
+  std::optional<dolfinx::la::Vector<double>> assembled;
+  std::span<const double> r = report.residual;
+  if (r.empty())
+  {
+    assembled.emplace(problem.assemble(problem.model.F));
+    r = assembled->array().subspan(
+        0, problem.W->dofmap()->index_map->size_local() * problem.W->dofmap()->index_map_bs());
+  }
   step["reactions"] = json::object();
-  for (const auto& [name, f] : report.reactions ? *report.reactions : problem.reactions(r))
+  for (const auto& [name, f] : problem.reactions(r))
     step["reactions"][name] = f;
   if (!problem.electrodes.empty())
     step["electrodes"] = electrodes_json(r, report.k);
@@ -233,6 +242,7 @@ json Record::accept(StepState state, const SolveReport& report, const StateViews
   // Step files, then its checkpoint, then the summary that points to both:
   // a kill at any instant leaves a summary whose every step is on disk
   const StepState previous = _state;
+  diagnostics.reset();
   try
   {
     timed(_step_files, "step files", [&] { _writer->write_step(state.step, report.t, final); });
@@ -244,6 +254,7 @@ json Record::accept(StepState state, const SolveReport& report, const StateViews
     _summary["timing"]["output_s"]
         = _step_files.seconds + _checkpoints.seconds + _summaries.seconds;
     _summary["timing"]["output"] = output_timing();
+    _summary["timing"]["diagnostics"] = _diagnostics.to_json();
     write_summary();
   }
   catch (const OutputError& e)

@@ -58,9 +58,9 @@ struct SolveReport
   int newton_iterations = 0, factorisations = 0, krylov_iterations = 0;
   /// Per-field norms of each iterate's residual (the last: the accepted one)
   std::vector<std::map<std::string, FieldNorms>> history;
-  /// Reactions of clamped boundaries at the accepted state; if absent, from
-  /// a residual assembled for the purpose
-  std::optional<std::map<std::string, std::vector<double>>> reactions;
+  /// The unconstrained residual at the accepted state (owned entries), for
+  /// reactions, balance and charges; if empty, assembled for the purpose
+  std::span<const double> residual;
 };
 
 /// x_n, x_{n-1} and x_J (the iterate the Jacobian in use was assembled at)
@@ -119,6 +119,6 @@ private:
   ContactGeometry _contact;
   StateFile _state_file;
   std::optional<Writer> _writer;
-  OperationStats _step_files, _checkpoints, _summaries;
+  OperationStats _step_files, _checkpoints, _summaries, _diagnostics;
 };
 } // namespace piezocontact

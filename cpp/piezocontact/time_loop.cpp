@@ -265,7 +265,7 @@ json run(Problem& problem, const RunSettings& settings, const std::filesystem::p
     newton_s += newton_timer.stop();
     newton_its += its;
     SolveReport report{t, k, its, system.factorisation.count - f0, newton.krylov_iterations(),
-                       monitor.history, system.reactions};
+                       monitor.history, system.unconstrained};
     if (signal or !converged)
     {
       std::copy(xp.begin(), xp.end(), xa.begin()); // back to the last accepted state
