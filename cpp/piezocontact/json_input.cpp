@@ -70,10 +70,13 @@ public:
   bool end_object() override { return close(); }
   bool start_array(std::size_t) override { return open(true); }
   bool end_array() override { return close(); }
-  bool parse_error(std::size_t, const std::string&, const json::exception&) override
+  bool parse_error(std::size_t position, const std::string&, const json::exception&) override
   {
+    error_at = position;
     return false;
   }
+  /// the byte count read when the parse stopped (1-based), 0 if it did not
+  std::size_t error_at = 0;
 
 private:
   struct Frame
@@ -102,12 +105,13 @@ private:
   std::vector<Frame> _frames;
 };
 
-/// The key path at which `text` stops parsing ("" at the top level)
-std::string key_path_of_error(const std::string& text)
+/// The key path at which `text` stops parsing ("" at the top level) and
+/// the byte count read then
+std::pair<std::string, std::size_t> key_path_of_error(const std::string& text)
 {
   KeyPath sax;
   json::sax_parse(text, &sax, json::input_format_t::json, false);
-  return sax.path();
+  return {sax.path(), sax.error_at};
 }
 } // namespace
 
@@ -162,14 +166,12 @@ json parse_json(const std::string& text, const std::string& source, std::size_t 
     // number overflow parsing 'TOKEN': find the token for its position
     std::string what = reason(e);
     const auto q0 = what.find('\''), q1 = what.rfind('\'');
-    std::size_t at = std::string::npos;
-    std::string token;
-    if (q0 != std::string::npos and q1 > q0)
-    {
-      token = what.substr(q0 + 1, q1 - q0 - 1);
-      at = text.find(token);
-    }
-    const std::string key = key_path_of_error(text);
+    const std::string token
+        = q0 != std::string::npos and q1 > q0 ? what.substr(q0 + 1, q1 - q0 - 1) : "";
+    const auto [key, read] = key_path_of_error(text);
+    // the token is what was read last: it starts where it ends minus its length
+    const std::size_t at = read >= token.size() and read > 0 ? read - token.size()
+                                                               : std::string::npos;
     fail(source, (key.empty() ? std::string() : printable(key, 120) + " = ")
                      + printable(token, 40) + ": beyond the range of a double (invalid JSON"
                      + (at == std::string::npos ? std::string() : " at " + position(text, at))

@@ -7,7 +7,6 @@
 
 #include <algorithm>
 #include <optional>
-#include <stdexcept>
 
 namespace piezocontact
 {
@@ -23,8 +22,21 @@ std::vector<double> local_values(Mat M)
   PetscBool mpi, seq;
   PetscObjectTypeCompare((PetscObject)M, MATMPIAIJ, &mpi);
   PetscObjectTypeCompare((PetscObject)M, MATSEQAIJ, &seq);
-  if (!mpi and !seq)
-    throw std::logic_error("J_contact is not an AIJ matrix");
+  std::vector<double> out;
+  if (!mpi and !seq) // another type: row by row, O(rows)
+  {
+    PetscInt r0, r1;
+    MatGetOwnershipRange(M, &r0, &r1);
+    for (PetscInt row = r0; row < r1; ++row)
+    {
+      PetscInt ncols;
+      const PetscScalar* vals;
+      MatGetRow(M, row, &ncols, nullptr, &vals);
+      out.insert(out.end(), vals, vals + ncols);
+      MatRestoreRow(M, row, &ncols, nullptr, &vals);
+    }
+    return out;
+  }
   std::vector<Mat> blocks{M};
   if (mpi)
   {
@@ -33,7 +45,6 @@ std::vector<double> local_values(Mat M)
     MatMPIAIJGetSeqAIJ(M, &Ad, &Ao, &colmap);
     blocks = {Ad, Ao};
   }
-  std::vector<double> out;
   for (Mat B : blocks)
   {
     MatInfo info;

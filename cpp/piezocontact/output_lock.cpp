@@ -27,9 +27,13 @@ OutputLock::OutputLock(const std::filesystem::path& dir, const std::string& sour
       error = std::strerror(errno);
     else if (::flock(_fd, LOCK_EX | LOCK_NB) != 0)
     {
-      error = errno == EWOULDBLOCK ? "another run is writing there (it holds " + path.string()
-                                         + "); wait for it to end or choose another folder"
-                                   : std::string(std::strerror(errno));
+      // a file system without locks (some network mounts) runs unguarded,
+      // as before locks existed
+      if (errno == EWOULDBLOCK)
+        error = "another run is writing there (it holds " + path.string()
+                + "); wait for it to end or choose another folder";
+      else if (errno != ENOLCK and errno != EOPNOTSUPP and errno != ENOSYS)
+        error = std::strerror(errno);
       ::close(_fd);
       _fd = -1;
     }

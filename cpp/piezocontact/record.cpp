@@ -218,8 +218,10 @@ json Record::accept(StepState state, const SolveReport& report, const StateViews
     step[problem.dim() == 2 ? "contact_length" : "contact_area"] = in_contact;
   // the unconstrained residual at x_n: reactions, balance, electrode charges
   std::optional<dolfinx::la::Vector<double>> assembled;
-  std::span<const double> r = report.residual;
-  if (r.empty())
+  std::span<const double> r;
+  if (report.residual)
+    r = *report.residual;
+  else // collective: every rank alike (the engine decides, not the data)
   {
     assembled.emplace(problem.assemble(problem.model.F));
     r = assembled->array().subspan(
@@ -293,14 +295,16 @@ void Record::check_balance(const json& step, const ForceBalance& balance)
                                        step["contact_force"].get<std::vector<double>>());
   if (ratio <= balance_tolerance)
     return;
+  char c_p[64] = "";
+  if (_problem.contact_pressure) // a contact boundary: the usual culprit
+    std::snprintf(c_p, sizeof(c_p), " (contact.c_p = %g)",
+                  _problem.model.constants.at("c_p")->value[0]);
   char what[400];
   std::snprintf(what, sizeof(what),
                 "forces do not balance at t = %g although Newton's test passed: what is "
                 "left on the free dofs is %.3g of the contact and support forces (at most "
-                "%g accepted); the system is too ill-conditioned for double precision "
-                "(contact.c_p = %g)",
-                step["t"].get<double>(), ratio, balance_tolerance,
-                _problem.model.constants.at("c_p")->value[0]);
+                "%g accepted); the system is too ill-conditioned for double precision%s",
+                step["t"].get<double>(), ratio, balance_tolerance, c_p);
   fail(what);
 }
 
@@ -337,6 +341,7 @@ void Record::reject(const SolveReport& report, const std::string& action)
                                 {"k", report.k},
                                 {"newton_iterations", report.newton_iterations},
                                 {"relative_residuals", fields_json(last, &FieldNorms::relative)},
+                                {"relative_updates", fields_json(last, &FieldNorms::update)},
                                 {"action", action}});
 }
 
@@ -363,6 +368,7 @@ void Record::interrupt(int signum, const json& timing)
   _summary["timing"] = timing;
   _summary["timing"]["output_s"] = _step_files.seconds + _checkpoints.seconds + _summaries.seconds;
   _summary["timing"]["output"] = output_timing();
+  _summary["timing"]["diagnostics"] = _diagnostics.to_json();
   try
   {
     write_summary();

@@ -58,9 +58,10 @@ struct SolveReport
   int newton_iterations = 0, factorisations = 0, krylov_iterations = 0;
   /// Per-field norms of each iterate's residual (the last: the accepted one)
   std::vector<std::map<std::string, FieldNorms>> history;
-  /// The unconstrained residual at the accepted state (owned entries), for
-  /// reactions, balance and charges; if empty, assembled for the purpose
-  std::span<const double> residual;
+  /// The unconstrained residual at the accepted state (owned entries, which
+  /// may be none on a rank), for reactions, balance and charges; if absent
+  /// (on every rank alike), assembled for the purpose
+  std::optional<std::span<const double>> residual;
 };
 
 /// x_n, x_{n-1} and x_J (the iterate the Jacobian in use was assembled at)

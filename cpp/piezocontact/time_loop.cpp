@@ -33,6 +33,13 @@ std::string sci(double v)
   return buf;
 }
 
+/// What the test measures of a field: its relative residual, and its
+/// relative update once there is one
+double measured(const FieldNorms& f)
+{
+  return std::isnan(f.update) ? f.relative : std::max(f.relative, f.update);
+}
+
 /// The fields that did not converge and made no progress in the last
 /// iterations: what round-off of terms far larger than the residual does
 /// (data spanning more orders of magnitude than double precision resolves)
@@ -47,10 +54,10 @@ std::string stalled(const std::vector<std::map<std::string, FieldNorms>>& histor
     double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
     for (std::size_t i = history.size() - window; i < history.size(); ++i)
     {
-      lo = std::min(lo, history[i].at(name).relative);
-      hi = std::max(hi, history[i].at(name).relative);
+      lo = std::min(lo, measured(history[i].at(name)));
+      hi = std::max(hi, measured(history[i].at(name)));
     }
-    if (last.relative > rtol and hi <= 10 * lo)
+    if (measured(last) > rtol and hi <= 10 * lo)
       out += (out.empty() ? "" : ", ") + name;
   }
   return out.empty() ? ""
@@ -265,7 +272,8 @@ json run(Problem& problem, const RunSettings& settings, const std::filesystem::p
     newton_s += newton_timer.stop();
     newton_its += its;
     SolveReport report{t, k, its, system.factorisation.count - f0, newton.krylov_iterations(),
-                       monitor.history, system.unconstrained};
+                       monitor.history,
+                       std::span<const double>(system.unconstrained)};
     if (signal or !converged)
     {
       std::copy(xp.begin(), xp.end(), xa.begin()); // back to the last accepted state
@@ -279,11 +287,13 @@ json run(Problem& problem, const RunSettings& settings, const std::filesystem::p
       char what[1024];
       std::snprintf(what, sizeof(what),
                     "Newton did not converge at t = %g (k = %g) in %d iterations: %s"
-                    "relative residuals u = %s, phi = %s%s%s",
+                    "relative residuals u = %s, phi = %s; relative updates u = %s, phi = %s%s%s",
                     t, k, its,
                     linear_failure.empty() ? "" : (linear_failure + "; ").c_str(),
                     sci(last.at("u").relative).c_str(),
                     sci(last.at("phi").relative).c_str(),
+                    sci(last.at("u").update).c_str(),
+                    sci(last.at("phi").update).c_str(),
                     last.contains("charge")
                         ? (", floating charges = " + sci(last.at("charge").relative)).c_str()
                         : "",
@@ -291,8 +301,12 @@ json run(Problem& problem, const RunSettings& settings, const std::filesystem::p
                         ? ""
                         : (", forces unbalanced by " + sci(imbalance)
                            + " of the contact and support forces (too ill-conditioned for "
-                             "double precision? contact.c_p = "
-                           + sci(problem.model.constants.at("c_p")->value[0]) + ")")
+                             "double precision?"
+                           + (problem.contact_pressure
+                                  ? " contact.c_p = "
+                                        + sci(problem.model.constants.at("c_p")->value[0])
+                                  : std::string())
+                           + ")")
                               .c_str());
       const std::string action = steps.reject();
       record.reject(report, action);

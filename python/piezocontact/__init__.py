@@ -8,7 +8,15 @@ JIT-compiles from the UFL of forms/.
 
 import sys
 
-if sys.argv[:1] == ["-m"]:  # being imported by `python3 -m piezocontact[.x]`
+
+def _run_as_command_line():
+    """Imported by `python3 [options] -m piezocontact` (not a submodule)"""
+    argv = getattr(sys, "orig_argv", [])
+    return sys.argv[:1] == ["-m"] and "-m" in argv \
+        and argv[argv.index("-m") + 1:][:1] == ["piezocontact"]
+
+
+if _run_as_command_line():
     from . import _signals
     _signals.quiet_until_run()
 

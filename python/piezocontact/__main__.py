@@ -12,7 +12,10 @@ def main(argv):
     keep = []  # the Python model objects of the run (the reference engine's)
     engines = [(name, solver, model.factory(keep=keep), api.engine_loop(name, keep))
                for name, solver in api.ENGINES.items()]
-    return cpp.command_line("python3 -m piezocontact", argv, MPI.COMM_WORLD, engines)
+    code = cpp.command_line("python3 -m piezocontact", argv, MPI.COMM_WORLD, engines)
+    from . import _signals
+    _signals.run_ended()
+    return code
 
 
 if __name__ == "__main__":

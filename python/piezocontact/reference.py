@@ -64,7 +64,7 @@ class _Newton:
         # rows and columns of each field: owned, not Dirichlet (local indices)
         bc = np.asarray(problem.bc_dofs)
         self.free = {f: np.setdiff1d(d, bc) for f, d in self.fields.items()}
-        self._coupling = None  # ||J_fg||_inf of the Jacobian in use
+        self._coupling = None  # |J_fg| of the Jacobian in use, per (f, g)
 
     def _F(self, snes, x, F):
         t0 = time.perf_counter()
@@ -97,8 +97,9 @@ class _Newton:
         self._coupling = None
         self.assembly_s += time.perf_counter() - t0
 
-    def _block_norms(self):
-        """||J_fg||_inf of the free rows of f and columns of g != f, per f."""
+    def _abs_blocks(self):
+        """|J_fg| (entry by entry) on the free rows of f and columns of
+        g != f, per (f, g), of the Jacobian in use."""
         if self._coupling is None:
             start = self.A.getOwnershipRange()[0]
             n = self.A.getLocalSize()[0]
@@ -108,29 +109,40 @@ class _Newton:
                 for f, d in self.free.items()}
             self._coupling = {}
             for f in index:
-                self._coupling[f] = max(
-                    (self.A.createSubMatrix(index[f], index[g]).norm(PETSc.NormType.INFINITY)
-                     for g in index if g != f), default=0.0)
+                for g in index:
+                    if g == f:
+                        continue
+                    block = self.A.createSubMatrix(index[f], index[g])
+                    ai, aj, av = block.getValuesCSR()
+                    self._coupling[f, g] = PETSc.Mat().createAIJWithArrays(
+                        block.getSizes(), (ai, aj, np.abs(av)), comm=comm)
         return self._coupling
 
     def _zero_fields(self, x, dx, failing):
         """Of the fields that failed the increment test, those zero to
         round-off (phi with every electrode grounded): their own terms,
         J_ff x_f, and the step's, J_ff dx_f, are below the round-off of the
-        coupling terms in their equations, ||J_fg||_inf ||x_g||_inf (g != f).
-        Such a field has no size to measure an increment against. {field:
-        size of its terms relative to the coupling}."""
+        coupling terms in their equations, |J_fg| |x_g| (g != f, max norms,
+        entry by entry: what the coupling's sum is the round-off of). Such a
+        field has no size to measure an increment against. {field: size of
+        its terms relative to the coupling}."""
         if self.floating or not failing:
             return {}  # the constrained layout of the floating case: no zero rule
         n = x.getLocalSize()
-        size = {f: abs(x.getArray(readonly=True)[d[d < n]]) for f, d in self.fields.items()}
+        values = x.getArray(readonly=True)
         comm = self.x.function_space.mesh.comm
-        x_inf = {f: comm.allreduce(float(np.max(v, initial=0.0)), op=_MAX)
-                 for f, v in size.items()}
-        coupling = self._block_norms()
         out = {}
         for f in failing:
-            c = coupling[f] * max(x_inf[g] for g in self.fields if g != f)
+            c = 0.0
+            for (row, g), block in self._abs_blocks().items():
+                if row != f:
+                    continue
+                xg = block.createVecRight()
+                xg.setArray(np.abs(values[self.free[g][self.free[g] < n]]))
+                y = block.createVecLeft()
+                block.mult(xg, y)
+                c = max(c, float(np.max(y.getArray(readonly=True), initial=0.0)))
+            c = comm.allreduce(c, op=_MAX)
             own = max(self._own_terms(v, f) for v in (x, dx))
             if own <= ROUNDOFF * c:
                 out[f] = own / c if c > 0 else 0.0
@@ -276,8 +288,9 @@ def run(model, problem, settings, output, summary, progress, observer=None):
             record.reject(report, "stop")
             unbalanced = "" if newton.imbalance <= cpp.balance_tolerance else (
                 f", forces unbalanced by {newton.imbalance:.3e} of the contact and support "
-                "forces (too ill-conditioned for double precision? contact.c_p = "
-                f"{float(model.data['c_p'].value):.3e})")
+                "forces (too ill-conditioned for double precision?"
+                + (f" contact.c_p = {float(model.data['c_p'].value):.3e}"
+                   if comm.allreduce(len(model.contact_facets)) else "") + ")")
             record.fail(f"Newton did not converge at t = {t:g} (k = {k:g}) in {its} "
                         f"iterations (reference engine){unbalanced}{_stalled(newton.history)}")
         # recorded while x_prev is u_{n-1}: the stress holds the velocity
