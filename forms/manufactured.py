@@ -40,12 +40,14 @@ PHI0 = 1.0  # size of the exact potential (V)
 QUADRATURE_DEGREE = 4
 
 
-def constant_shapes():
-    """The Constants the manufactured forms add to piezo_forms' (any d)."""
+def shared_data():
+    """The Constants the manufactured forms add to piezo_forms' (any d),
+    all set by the core (from the step's time and the config's
+    "manufactured" block)."""
     return {
-        "t": (),             # time of the step (s)
-        "space_smooth": (),  # 1: add the trigonometric part of U, Phi; 0: linear
-        "time_smooth": (),   # 1: theta = sin(pi t/2); 0: theta = t
+        "t": pf.Datum(()),             # time of the step (s)
+        "space_smooth": pf.Datum(()),  # 1: add the trigonometric part of U, Phi; 0: linear
+        "time_smooth": pf.Datum(()),   # 1: theta = sin(pi t/2); 0: theta = t
     }
 
 
@@ -123,16 +125,6 @@ def region_residual(x, x_prev, y, dx, mat, data):
 def contact_residual(x, y, ds, data, law=pf.p):
     """piezo_forms' contact term minus the exact solution's contact load."""
     return pf.contact_residual(x, y, ds, data, law) - contact_loads(y, ds, data, law)
-
-
-def residual(x, x_prev, y, dx, ds, mat, contact, data, law=pf.p):
-    """The whole residual of a manufactured run (one material) as one UFL
-    form; `contact` lists the contact facet tags. Its Jacobian is
-    piezo_forms' (the loads do not depend on x)."""
-    F = region_residual(x, x_prev, y, dx, mat, data) - exterior_loads(y, ds, mat, data)
-    if contact:
-        F += contact_residual(x, y, ds(tuple(contact)), data, law)
-    return F
 
 
 def squared_errors(x, data):

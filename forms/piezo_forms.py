@@ -166,43 +166,48 @@ def contact_pressure_moments(x, y, ds, data, law=p):
             psi * ds)
 
 
-def residual(x, x_prev, y, dx, ds, regions, boundaries, contact, data, law=p):
-    """The whole residual as one UFL form (the reference engine's view):
-    dx/ds carry the cell/facet tags, `regions` maps a cell tag to its
-    material, `boundaries` a facet tag to its loads, `contact` lists the
-    contact facet tags."""
-    F = sum(region_residual(x, x_prev, y, dx(tag), mat, data) for tag, mat in regions.items())
-    F -= sum(boundary_loads(y, ds(tag), load) for tag, load in boundaries.items())
-    if contact:
-        F += contact_residual(x, y, ds(tuple(contact)), data, law)
-    return F
+class Datum:
+    """A Constant of the forms: its shape and where its value comes from.
+    `key`: the config key that sets it (from the top for the shared data,
+    within a region's material or a boundary's entry for the others; None:
+    the core sets it, as the time step); `timed`: the key may carry a
+    history (the core scales the value at every step). A key the config
+    leaves out leaves the Constant zero."""
+
+    def __init__(self, shape, key=None, timed=False):
+        self.shape, self.key, self.timed = shape, key, timed
 
 
-def constant_shapes(d):
-    """Names and shapes of the Constants shared by every term (d dimensions)."""
+def shared_data(d):
+    """The Constants shared by every term (d dimensions)."""
     return {
-        "c_p": (),      # surface stiffness of the foundation (N/m^3)
-        "g": (),        # initial gap along nu (m)
-        "k": (),        # time step (s)
-        "f0": (d,),     # body force (N/m^3)
-        "q0": (),       # free charge density (C/m^3)
+        "c_p": Datum((), "contact.c_p"),                    # surface stiffness of the foundation (N/m^3)
+        "g": Datum((), "contact.gap"),                      # initial gap along nu (m)
+        "k": Datum(()),                                     # time step (s)
+        "f0": Datum((d,), "loads.body_force", timed=True),  # body force (N/m^3)
+        "q0": Datum((), "loads.charge_density", timed=True),  # free charge density (C/m^3)
     }
 
 
-def material_shapes(d):
+def material_data(d):
     """The Constants of one region's material (Voigt, see VOIGT_PAIRS)."""
     m = voigt_size(d)
     return {
-        "Bv": (m, m),     # elastic tensor (Pa)
-        "Av": (m, m),     # viscosity tensor (Pa s)
-        "e": (d, m),      # piezoelectric tensor (C/m^2), rows: D components
-        "beta": (d, d),   # permittivity (C^2/(N m^2)), positive definite
+        "Bv": Datum((m, m), "elastic"),          # elastic tensor (Pa)
+        "Av": Datum((m, m), "viscosity"),        # viscosity tensor (Pa s)
+        "e": Datum((d, m), "piezoelectric"),     # piezoelectric tensor (C/m^2), rows: D components
+        "beta": Datum((d, d), "permittivity"),   # permittivity (C^2/(N m^2)), positive definite
     }
 
 
-def load_shapes(d):
+def load_data(d):
     """The Constants of one named boundary's loads."""
     return {
-        "fF": (d,),     # traction (N/m^2)
-        "qF": (),       # surface charge (C/m^2)
+        "fF": Datum((d,), "traction", timed=True),     # traction (N/m^2)
+        "qF": Datum((), "surface_charge", timed=True),  # surface charge (C/m^2)
     }
+
+
+def shapes(data):
+    """{name: shape} of a dict of Datum."""
+    return {name: datum.shape for name, datum in data.items()}

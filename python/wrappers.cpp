@@ -19,8 +19,8 @@ using dolfinx_wrappers::MPICommWrapper;
 
 namespace
 {
-/// A model factory written in Python: (NamedMesh, config text) -> Model
-using PyModelFactory = std::function<Model(const NamedMesh&, const std::string&)>;
+/// A model factory written in Python: (NamedMesh, ModelSpec) -> Model
+using PyModelFactory = std::function<Model(const NamedMesh&, const ModelSpec&)>;
 /// A time loop written in Python: (Problem, settings, output, summary text,
 /// resume, progress) -> summary text
 using PyEngine = std::function<std::string(Problem*, const RunSettings&, const std::string&,
@@ -28,7 +28,7 @@ using PyEngine = std::function<std::string(Problem*, const RunSettings&, const s
 
 ModelFactory factory(const PyModelFactory& f)
 {
-  return [f](const NamedMesh& mesh, const json& cfg) { return f(mesh, cfg.dump()); };
+  return [f](const NamedMesh& mesh, const ModelSpec& spec) { return f(mesh, spec); };
 }
 
 /// The Python classes of the library's exceptions (set at import)
@@ -87,8 +87,24 @@ void declare_model(py::module_& m)
       .def("boundary_facets_of", &NamedMesh::boundary_facets_of, py::arg("boundary"),
            py::arg("region"));
 
+  class_<ModelSpec>(m, "ModelSpec", "Which pieces of the mesh carry which terms (model.h)")
+      .def(py::init<>())
+      .def_rw("manufactured", &ModelSpec::manufactured)
+      .def_rw("contact", &ModelSpec::contact)
+      .def_rw("electrodes", &ModelSpec::electrodes)
+      .def_rw("boundary_keys", &ModelSpec::boundary_keys);
+
+  class_<ConstantSource>(m, "ConstantSource",
+                         "Where a Constant's value comes from (model.h)")
+      .def(py::init<>())
+      .def_rw("group", &ConstantSource::group)
+      .def_rw("name", &ConstantSource::name)
+      .def_rw("key", &ConstantSource::key)
+      .def_rw("timed", &ConstantSource::timed);
+
   class_<RegionFields>(m, "RegionFields", "The cell-wise output of one region")
       .def(py::init<>())
+      .def_rw("region", &RegionFields::region)
       .def_rw("cells", &RegionFields::cells)
       .def_rw("electric_displacement", &RegionFields::electric_displacement)
       .def_rw("stress", &RegionFields::stress);
@@ -102,6 +118,7 @@ void declare_model(py::module_& m)
       .def_rw("constants", &Model::constants)
       .def_rw("materials", &Model::materials)
       .def_rw("loads", &Model::loads)
+      .def_rw("sources", &Model::sources)
       .def_rw("contact_facets", &Model::contact_facets)
       .def_rw("F", &Model::F)
       .def_rw("J", &Model::J)
@@ -321,14 +338,13 @@ PIEZO_MODULE(cpp, m)
       "The mesh of a validated config: the built-in square, or an XDMF file with "
       "facet tags and its NAME.boundaries.json");
   m.def(
-      "set_constants",
-      [](const std::string& cfg, const ConstantMap& constants,
-         const std::map<std::string, ConstantMap>& materials,
-         const std::map<std::string, ConstantMap>& loads, const std::string& source)
-      { set_constants(json::parse(cfg), constants, materials, loads, source); },
-      py::arg("cfg"), py::arg("constants"), py::arg("materials"), py::arg("loads"),
-      py::arg("source") = "config",
-      "Fill the Constants of the forms from a validated config (config.h)");
+      "model_spec", [](const std::string& cfg) { return model_spec(json::parse(cfg)); },
+      py::arg("cfg"), "Which pieces of the mesh carry which terms, from a validated config");
+  m.def(
+      "set_constants", [](const std::string& cfg, const Model& model)
+      { set_constants(json::parse(cfg), model); },
+      py::arg("cfg"), py::arg("model"),
+      "Fill the Constants of a model from a validated config (config.h)");
   m.def(
       "resumable_summary",
       [](const std::string& dir, const std::vector<std::string>& overrides,

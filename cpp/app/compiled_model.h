@@ -1,6 +1,5 @@
 // The model of the executable: the kernels ffcx compiled ahead of time from
-// forms/piezo_contact.ufl (and forms/manufactured.ufl for manufactured-
-// solution runs), bound to a mesh.
+// the catalogue of terms (forms/terms.py), bound to a mesh.
 #pragma once
 
 #include <piezocontact/config.h>
@@ -8,6 +7,7 @@
 
 namespace piezocontact::app
 {
-/// The forms on `mesh`, their Constants zero (the driver fills them)
-Model compiled_model(const NamedMesh& mesh, const json& cfg);
+/// The forms on `mesh`, their pieces as `spec` says, their Constants zero
+/// (the driver fills them)
+Model compiled_model(const NamedMesh& mesh, const ModelSpec& spec);
 } // namespace piezocontact::app

@@ -817,9 +817,6 @@ RunSettings run_settings(const json& cfg)
     s.probes.push_back(x);
   }
   s.output = {cfg["output"]["xdmf"].get<bool>(), cfg["output"]["nodal"].get<std::string>()};
-  for (const auto& [key, constant] : {std::pair{"body_force", "f0"}, std::pair{"charge_density", "q0"}})
-    if (cfg["loads"].contains(key))
-      s.timed.push_back({"", constant, history_of(cfg["loads"][key])});
   std::map<std::string, json> sorted;
   for (const auto& [name, bc] : cfg["boundaries"].items())
     sorted[name] = bc;
@@ -855,17 +852,75 @@ RunSettings run_settings(const json& cfg)
       d.charge = value_of(bc["floating"]["charge"]).get<double>();
       d.charge_history = history_of(bc["floating"]["charge"]);
     }
-    for (const auto& [key, constant] : {std::pair{"traction", "fF"}, std::pair{"surface_charge", "qF"}})
-      if (bc.contains(key))
-        s.timed.push_back({name, constant, history_of(bc[key])});
     if (d.displacement or d.displacement_exact or d.potential or d.potential_exact or d.floating)
       s.dirichlet.push_back(std::move(d));
   }
   return s;
 }
 
+ModelSpec model_spec(const json& cfg)
+{
+  ModelSpec spec;
+  spec.manufactured = cfg.contains("manufactured");
+  for (const auto& [name, bc] : cfg["boundaries"].items())
+  {
+    if (bc.value("contact", false))
+      spec.contact.push_back(name);
+    if (bc.contains("potential") or bc.contains("floating"))
+      spec.electrodes.push_back(name);
+    auto& keys = spec.boundary_keys[name];
+    for (const auto& [key, _] : bc.items())
+      keys.push_back(key);
+  }
+  return spec;
+}
+
 namespace
 {
+/// The value at a dotted key path below `node` (null if a part is missing)
+const json* at_path(const json& node, const std::string& path)
+{
+  const json* at = &node;
+  std::size_t begin = 0;
+  while (begin <= path.size())
+  {
+    const std::size_t end = std::min(path.find('.', begin), path.size());
+    const std::string part = path.substr(begin, end - begin);
+    if (!at->is_object() or !at->contains(part))
+      return nullptr;
+    at = &(*at)[part];
+    begin = end + 1;
+  }
+  return at;
+}
+
+/// The config entry that a group's keys are relative to, for one piece
+/// (null: none, the Constants stay zero)
+const json* entry_of(const json& cfg, const std::string& group, const std::string& piece)
+{
+  if (group == "shared")
+    return &cfg;
+  if (group == "material")
+  {
+    if (!cfg.contains("regions"))
+      return &cfg["material"];
+    return cfg["regions"].contains(piece) ? &cfg["regions"][piece] : nullptr;
+  }
+  return cfg["boundaries"].contains(piece) ? &cfg["boundaries"][piece] : nullptr;
+}
+
+/// Every (piece, Constants) of a group: "" for the shared ones
+std::vector<std::pair<std::string, const ConstantMap*>> pieces(const Model& model,
+                                                                const std::string& group)
+{
+  if (group == "shared")
+    return {{"", &model.constants}};
+  std::vector<std::pair<std::string, const ConstantMap*>> out;
+  for (const auto& [piece, constants] : group == "material" ? model.materials : model.loads)
+    out.emplace_back(piece, &constants);
+  return out;
+}
+
 /// Fill a Constant from nested lists (row-major) or a number
 void set_value(const ConstantMap& constants, const std::string& name, const json& value)
 {
@@ -890,53 +945,43 @@ void set_zero(const ConstantMap& constants)
   for (const auto& [_, c] : constants)
     std::fill(c->value.begin(), c->value.end(), 0.0);
 }
+
 } // namespace
 
-void set_constants(const json& cfg, const ConstantMap& constants,
-                   const std::map<std::string, ConstantMap>& materials,
-                   const std::map<std::string, ConstantMap>& loads, const std::string& source)
+void set_constants(const json& cfg, const Model& model)
 {
-  set_zero(constants);
-  if (cfg.contains("contact")) // else no contact boundary (check_semantics): zeros
-  {
-    set_value(constants, "c_p", cfg["contact"]["c_p"]);
-    set_value(constants, "g", cfg["contact"]["gap"]);
-  }
-  set_value(constants, "k", cfg["time"]["T"].get<double>() / cfg["time"]["steps"].get<double>());
-  if (cfg["loads"].contains("body_force"))
-    set_value(constants, "f0", value_of(cfg["loads"]["body_force"]));
-  set_value(constants, "q0", value_of(cfg["loads"]["charge_density"]));
-  for (const auto& [region, material] : materials)
-  {
-    if (cfg.contains("regions") and !cfg["regions"].contains(region))
-      throw std::logic_error("no material for region " + region + " (check_regions)");
-    const json& mat = cfg.contains("regions") ? cfg["regions"][region] : cfg["material"];
-    set_value(material, "Bv", mat["elastic"]);
-    set_value(material, "Av", mat["viscosity"]);
-    set_value(material, "e", mat["piezoelectric"]);
-    set_value(material, "beta", mat["permittivity"]);
-  }
-  for (const auto& [name, load] : loads)
-    set_zero(load);
-  for (const auto& [name, bc] : cfg["boundaries"].items())
-  {
-    if (!loads.contains(name))
+  set_zero(model.constants);
+  for (const auto& [_, m] : model.materials)
+    set_zero(m);
+  for (const auto& [_, l] : model.loads)
+    set_zero(l);
+  for (const auto& datum : model.sources)
+    for (const auto& [piece, constants] : pieces(model, datum.group))
     {
-      std::string have;
-      for (const auto& [m, _] : loads)
-        have += (have.empty() ? "" : ", ") + m;
-      throw ConfigError(source + ": boundaries." + name + ": the mesh has no boundary '" + name
-                        + "' (it has: " + have + ")");
+      const json* entry = entry_of(cfg, datum.group, piece);
+      if (datum.group == "material" and !entry)
+        throw std::logic_error("no material for region " + piece + " (check_regions)");
+      const json* value = entry && !datum.key.empty() ? at_path(*entry, datum.key) : nullptr;
+      if (value)
+        set_value(*constants, datum.name, value_of(*value));
     }
-    const auto& load = loads.at(name);
-    if (bc.contains("traction"))
-      set_value(load, "fF", value_of(bc["traction"]));
-    set_value(load, "qF", bc.contains("surface_charge") ? value_of(bc["surface_charge"]) : json(0.0));
-  }
+  set_value(model.constants, "k", cfg["time"]["T"].get<double>() / cfg["time"]["steps"].get<double>());
   if (cfg.contains("manufactured"))
   {
-    constants.at("space_smooth")->value = {cfg["manufactured"]["space"] == "smooth" ? 1.0 : 0.0};
-    constants.at("time_smooth")->value = {cfg["manufactured"]["time"] == "smooth" ? 1.0 : 0.0};
+    model.constants.at("space_smooth")->value = {cfg["manufactured"]["space"] == "smooth" ? 1.0 : 0.0};
+    model.constants.at("time_smooth")->value = {cfg["manufactured"]["time"] == "smooth" ? 1.0 : 0.0};
   }
+}
+
+std::vector<TimedConstant> timed_constants(const json& cfg, const Model& model)
+{
+  std::vector<TimedConstant> out;
+  for (const auto& datum : model.sources)
+    if (datum.timed and datum.group != "material")
+      for (const auto& [piece, _] : pieces(model, datum.group))
+        if (const json* entry = entry_of(cfg, datum.group, piece))
+          if (const json* value = at_path(*entry, datum.key))
+            out.push_back({piece, datum.name, history_of(*value)});
+  return out;
 }
 } // namespace piezocontact

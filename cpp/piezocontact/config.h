@@ -47,14 +47,19 @@ void bcast_error(std::string& error, MPI_Comm comm);
 /// The typed settings of a validated config (boundaries in sorted order)
 RunSettings run_settings(const json& cfg);
 
-/// Fill the Constants of the forms from a validated config: those shared
-/// by every term (contact, k = T/steps, body loads, and the switches of a
-/// manufactured solution if the forms have them), each region's material
-/// and each named boundary's loads (zero where the config gives none).
-/// Throws ConfigError if the config names a boundary the mesh lacks.
-void set_constants(const json& cfg, const ConstantMap& constants,
-                   const std::map<std::string, ConstantMap>& materials,
-                   const std::map<std::string, ConstantMap>& loads, const std::string& source);
+/// Which pieces of the mesh carry which terms, from a validated config
+ModelSpec model_spec(const json& cfg);
+
+/// Fill the Constants of a model from a validated config, each from the
+/// key its source names (Model::sources; zero where the config gives
+/// none), and the time step k = T/steps and the switches of a manufactured
+/// solution. The config's boundaries and regions are the mesh's
+/// (mesh.h check_names).
+void set_constants(const json& cfg, const Model& model);
+
+/// The Constants whose config key carries a history (set_constants sets
+/// their value, the time loop scales it at every step)
+std::vector<TimedConstant> timed_constants(const json& cfg, const Model& model);
 
 /// Nearest key to a misspelt one (empty if none is close); exposed for tests.
 std::string closest_key(const std::string& key,

@@ -170,12 +170,13 @@ json run_config(const RunRequest& request, MPI_Comm comm, const ModelFactory& ma
   check_every_rank_has_cells(mesh, comm, request.source);
   const int d = mesh.mesh->geometry().dim();
   const json checked = check_dimension(request.cfg, d, request.source);
-  check_regions(checked, mesh, request.source);
+  check_names(checked, mesh, request.source);
   // from here on, every material is its tensors in the mesh frame
   const json cfg = resolve_materials(checked, d);
-  Model model = make_model(mesh, cfg);
-  set_constants(cfg, model.constants, model.materials, model.loads, request.source);
-  Problem problem(std::move(model), settings.dirichlet, request.source, settings.timed);
+  Model model = make_model(mesh, model_spec(cfg));
+  set_constants(cfg, model);
+  const auto timed = timed_constants(cfg, model);
+  Problem problem(std::move(model), settings.dirichlet, request.source, timed);
 
   json summary;
   if (request.resume)

@@ -19,9 +19,9 @@
 
 namespace piezocontact
 {
-/// Builds the forms on a mesh; the Constants may be left at zero (the
-/// driver fills them from the config)
-using ModelFactory = std::function<Model(const NamedMesh& mesh, const json& cfg)>;
+/// Builds the forms on a mesh, their pieces as the spec says; the Constants
+/// may be left at zero (the driver fills them from the config)
+using ModelFactory = std::function<Model(const NamedMesh& mesh, const ModelSpec& spec)>;
 
 /// A time loop: the library's `run` (time_loop.h) unless another is given
 using Engine = std::function<json(Problem& problem, const RunSettings& settings,

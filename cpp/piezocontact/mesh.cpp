@@ -271,13 +271,32 @@ prepare_mesh(const json& cfg, const std::string& source,
   return std::filesystem::path(t);
 }
 
-void check_regions(const json& cfg, const NamedMesh& mesh, const std::string& source)
+namespace
 {
+std::string names(const std::map<std::string, int>& named)
+{
+  std::string out;
+  for (const auto& [name, _] : named)
+    out += (out.empty() ? "" : ", ") + name;
+  return out;
+}
+
+void check_boundaries(const json& cfg, const NamedMesh& mesh, const std::string& source)
+{
+  for (const auto& [name, _] : cfg["boundaries"].items())
+    if (!mesh.tag_of.contains(name))
+      throw ConfigError(printable(source, 200) + ": boundaries." + printable(name, 60)
+                        + ": the mesh has no boundary '" + printable(name, 60)
+                        + "' (it has: " + printable(names(mesh.tag_of), 200) + ")");
+}
+} // namespace
+
+void check_names(const json& cfg, const NamedMesh& mesh, const std::string& source)
+{
+  check_boundaries(cfg, mesh, source);
   if (!cfg.contains("regions"))
     return;
-  std::string have;
-  for (const auto& [name, _] : mesh.region_of)
-    have += (have.empty() ? "" : ", ") + name;
+  const std::string have = names(mesh.region_of);
   for (const auto& [name, _] : cfg["regions"].items())
     if (!mesh.region_of.contains(name))
       throw ConfigError(printable(source, 200) + ": regions." + printable(name, 60)

@@ -20,9 +20,10 @@ std::optional<std::filesystem::path>
 prepare_mesh(const json& cfg, const std::string& source,
              const std::filesystem::path& out_dir, MPI_Comm comm);
 
-/// With "regions": the config names exactly the mesh's regions (named cell
-/// groups). Throws ConfigError.
-void check_regions(const json& cfg, const NamedMesh& mesh, const std::string& source);
+/// Every boundary of the config is one of the mesh's named boundaries
+/// (facet groups), and with "regions" the config names exactly the mesh's
+/// regions (named cell groups). Throws ConfigError.
+void check_names(const json& cfg, const NamedMesh& mesh, const std::string& source);
 
 NamedMesh build_mesh(const json& cfg, MPI_Comm comm,
                      const std::optional<std::filesystem::path>& mesh_file,

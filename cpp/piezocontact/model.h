@@ -46,9 +46,36 @@ using FormList = std::vector<std::shared_ptr<const dolfinx::fem::Form<double>>>;
 /// The cell-wise output of one region (its material enters the expressions)
 struct RegionFields
 {
+  std::string region;
   std::vector<std::int32_t> cells;
   /// Electric displacement and Voigt stress at the cell midpoint
   std::shared_ptr<const dolfinx::fem::Expression<double>> electric_displacement, stress;
+};
+
+/// Where the value of a Constant of the forms comes from (forms/piezo_forms.py
+/// Datum): its group ("shared", "material" or "load"), its name, the config
+/// key that sets it (from the top for shared data, within a region's
+/// material or a boundary's entry otherwise; empty: the core sets it) and
+/// whether that key may carry a history. A key the config leaves out
+/// leaves the Constant zero.
+struct ConstantSource
+{
+  std::string group, name, key;
+  bool timed = false;
+};
+
+/// What the model builders need of a run's config: which pieces of the
+/// mesh carry which terms (config.h model_spec)
+struct ModelSpec
+{
+  /// A manufactured-solution run (the catalogue's variant)
+  bool manufactured = false;
+  /// The contact boundaries; the electrodes (a prescribed or floating
+  /// potential), both among the mesh's named boundaries
+  std::vector<std::string> contact, electrodes;
+  /// Each named boundary of the config -> the keys its entry sets (a term
+  /// with a `where` key is instantiated on the boundaries that set it)
+  std::map<std::string, std::vector<std::string>> boundary_keys;
 };
 
 struct Model
@@ -63,6 +90,8 @@ struct Model
   ConstantMap constants;
   /// Per region: its material's Constants; per named boundary: its loads'
   std::map<std::string, ConstantMap> materials, loads;
+  /// Where each Constant's value comes from (config.h set_constants)
+  std::vector<ConstantSource> sources;
   /// Local indices of the contact facets
   std::vector<std::int32_t> contact_facets;
 

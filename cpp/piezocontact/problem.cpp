@@ -207,14 +207,6 @@ void Problem::create_bcs(const std::vector<DirichletSettings>& dirichlet,
   const auto W_phi = compat::sub(*W, 1);
   for (const auto& bc : dirichlet)
   {
-    if (!model.mesh.tag_of.contains(bc.boundary))
-    {
-      std::string have;
-      for (const auto& [m, _] : model.mesh.tag_of)
-        have += (have.empty() ? "" : ", ") + m;
-      throw ConfigError(source + ": boundaries." + bc.boundary + ": the mesh has no boundary '"
-                        + bc.boundary + "' (it has: " + have + ")");
-    }
     const auto facets = model.mesh.boundary_facets(bc.boundary);
     if (bc.displacement or bc.displacement_exact)
     {

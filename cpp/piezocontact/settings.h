@@ -85,8 +85,5 @@ struct RunSettings
   std::vector<std::array<double, 3>> probes;
   OutputSettings output;
   std::vector<DirichletSettings> dirichlet;
-  /// Loads that vary in time (set_constants sets their value, the time
-  /// loop scales it at every step)
-  std::vector<TimedConstant> timed;
 };
 } // namespace piezocontact

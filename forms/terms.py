@@ -1,0 +1,195 @@
+"""The catalogue of terms: every form and expression a run is made of, each
+integrated over one kind of piece of the mesh, with its role.
+
+The executable's kernel table (write_cpp_header.py, at build time), ffcx's
+entry points (entry_points.py), the Python package's JIT model and the
+reference engine's whole residual (python/piezocontact/model.py) are each
+one loop over this list; none of them names a term. Adding a term is its
+UFL in piezo_forms.py and one entry here.
+
+A term is built from a context `c` (see `Context`): the unknown c.x, the
+previous state c.x_prev, the test function c.y, the shared Constants c.data,
+the piece's material c.mat (region and electrode pieces) or loads c.load
+(boundary pieces), the contact law c.law, and c.m, the measure of the piece
+(dx or ds restricted to it).
+
+Pieces (what one instance of a term is integrated over, and its Constants):
+  region     the cells of one region            shared + that region's material
+  boundary   the facets of one named boundary   shared + that boundary's data
+  contact    the contact facets (all together)  shared
+  electrode  the facets of one electrode that bound one region
+                                                 shared + that region's material
+  exterior   every exterior facet                shared (+ the one material)
+  mesh       every cell                          shared
+Roles of the forms: "F" residual (summed), "L" applied loads (summed; they
+scale the force balance), "output" (a functional, a linear form or an
+expression the core reports: `slot` names the Model member it fills). The
+Jacobian is not listed: it is the derivative of each residual term
+(`jacobian`), "J" when it is constant in a run, "J_state" when it depends
+on the state (the core compares those to keep an LU factorisation).
+
+Variants: a manufactured-solution run replaces some terms (the same
+physics with the exact solution's loads) and adds others; its Jacobian is
+the model's (the loads do not depend on x).
+"""
+
+import manufactured as mms
+import piezo_forms as pf
+import ufl
+
+PIECES = ("region", "boundary", "contact", "electrode", "exterior", "mesh")
+
+
+class Term:
+    """One entry of the catalogue. `where`: on boundary pieces, the config
+    key a boundary must set for the term to be instantiated on it (None:
+    every named boundary). `points`: where an expression is evaluated
+    ("midpoint" of the cell, or "nodes", the P1 nodes). `variant`: the
+    variant that defines it (None: the model's)."""
+
+    def __init__(self, name, piece, role, build, slot=None, where=None, points=None,
+                 variant=None):
+        assert piece in PIECES and role in ("F", "L", "output")
+        self.name, self.piece, self.role, self.build = name, piece, role, build
+        self.slot, self.where, self.points, self.variant = slot, where, points, variant
+
+    @property
+    def expression(self):
+        return self.points is not None
+
+
+class Context:
+    """What a term is built from (see the module's docstring)."""
+
+    def __init__(self, x, x_prev, y, data, m=None, mat=None, load=None, law=pf.p):
+        self.x, self.x_prev, self.y, self.data = x, x_prev, y, data
+        self.m, self.mat, self.load, self.law = m, mat, load, law
+
+    def on(self, m, mat=None, load=None):
+        """The same context on another piece."""
+        return Context(self.x, self.x_prev, self.y, self.data, m, mat, load, self.law)
+
+    @property
+    def fields(self):
+        """u, phi, u_prev"""
+        u, phi = ufl.split(self.x)
+        u_prev, _ = ufl.split(self.x_prev)
+        return u, phi, u_prev
+
+
+def _contact_force(i):
+    return lambda c: pf.contact_force(c.x, c.m, c.data, i, c.law)
+
+
+def model(d):
+    """The terms of the model in d dimensions, in the order they are summed."""
+    def stress(c):
+        u, phi, u_prev = c.fields
+        return pf.stress_voigt(u, pf.velocity(u, u_prev, c.data), phi, c.mat)
+
+    def electric_displacement(c):
+        u, phi, _ = c.fields
+        return pf.electric_displacement(u, phi, c.mat)
+
+    return [
+        Term("F_region", "region", "F",
+             lambda c: pf.region_residual(c.x, c.x_prev, c.y, c.m, c.mat, c.data)),
+        Term("L_region", "region", "L", lambda c: pf.body_loads(c.y, c.m, c.data)),
+        Term("F_boundary", "boundary", "F", lambda c: -pf.boundary_loads(c.y, c.m, c.load)),
+        Term("L_boundary", "boundary", "L", lambda c: pf.boundary_loads(c.y, c.m, c.load)),
+        Term("F_contact", "contact", "F",
+             lambda c: pf.contact_residual(c.x, c.y, c.m, c.data, c.law)),
+        # what the core reports
+        Term("boundary_measure", "boundary", "output", lambda c: 1.0 * c.m,
+             slot="boundary_measures"),
+        Term("electrode_charge", "electrode", "output",
+             lambda c: pf.electrode_charge(c.x, c.m, c.mat), slot="electrode_charge"),
+        Term("contact_pressure_load", "contact", "output",
+             lambda c: pf.contact_pressure_moments(c.x, c.y, c.m, c.data, c.law)[0],
+             slot="contact_pressure_load"),
+        Term("contact_nodal_area", "contact", "output",
+             lambda c: pf.contact_pressure_moments(c.x, c.y, c.m, c.data, c.law)[1],
+             slot="contact_nodal_area"),
+        *[Term(f"contact_force_{axis}", "contact", "output", _contact_force(i),
+               slot="contact_force") for i, axis in enumerate("xyz"[:d])],
+        Term("electric_displacement", "region", "output", electric_displacement,
+             slot="electric_displacement", points="midpoint"),
+        Term("stress", "region", "output", stress, slot="stress", points="midpoint"),
+    ]
+
+
+def _squared_error(name):
+    return lambda c: mms.squared_errors(c.x, c.data)[name]
+
+
+def _exact(i):
+    return lambda c: mms.exact_solution(c.x.ufl_domain(), c.data)[i]
+
+
+def manufactured(d):
+    """The terms of a manufactured-solution run: the model's, with the
+    exact solution's loads in the bulk, on every exterior facet and on the
+    contact facets, and the exact fields and errors."""
+    variant = "manufactured"
+    replaced = {
+        "F_region": lambda c: mms.region_residual(c.x, c.x_prev, c.y, c.m, c.mat, c.data),
+        "L_region": lambda c: (pf.body_loads(c.y, c.m, c.data)
+                               + mms.body_loads(c.y, c.m, c.mat, c.data)),
+        "F_contact": lambda c: mms.contact_residual(c.x, c.y, c.m, c.data, c.law),
+    }
+    added_after = {
+        "L_region": [
+            Term("F_exterior", "exterior", "F",
+                 lambda c: -mms.exterior_loads(c.y, c.m, c.mat, c.data), variant=variant),
+            Term("L_exterior", "exterior", "L",
+                 lambda c: mms.exterior_loads(c.y, c.m, c.mat, c.data), variant=variant)],
+        "F_contact": [
+            Term("L_contact", "contact", "L",
+                 lambda c: mms.contact_loads(c.y, c.m, c.data, c.law), variant=variant)],
+    }
+    terms = []
+    for t in model(d):
+        if t.name in replaced:
+            t = Term(t.name, t.piece, t.role, replaced[t.name], t.slot, t.where, t.points,
+                     variant)
+            t.jacobian_of = base_builder(d, t.name)
+        terms += [t] + added_after.get(t.name, [])
+    terms += [Term(name, "mesh", "output", _squared_error(name), slot="squared_errors",
+                   variant=variant) for name in ("u_L2", "u_H1", "phi_L2", "phi_H1")]
+    terms += [Term("u_exact", "mesh", "output", _exact(0), slot="u_exact", points="nodes",
+                   variant=variant),
+              Term("phi_exact", "mesh", "output", _exact(1), slot="phi_exact", points="nodes",
+                   variant=variant)]
+    return terms
+
+
+def base_builder(d, name):
+    (t,) = [t for t in model(d) if t.name == name]
+    return t.build
+
+
+def catalogue(d, manufactured_run=False):
+    """The terms of a run: the model's, or a manufactured solution's."""
+    return manufactured(d) if manufactured_run else model(d)
+
+
+def jacobian(term, c, dx_trial):
+    """The Jacobian of a residual term on the piece of c: the derivative of
+    the model's own term (a variant's loads do not depend on x), or None
+    where it is zero (a load)."""
+    build = getattr(term, "jacobian_of", term.build)
+    J = ufl.derivative(build(c), c.x, dx_trial)
+    return None if ufl.algorithms.expand_derivatives(J).empty() else J
+
+
+def depends_on_state(J, c):
+    """Whether a Jacobian term changes within a run: it involves x, x_prev
+    or the time t."""
+    J = ufl.algorithms.expand_derivatives(J)
+    state = {c.x, c.x_prev}
+    return bool(state & set(J.coefficients())) or (
+        "t" in c.data and c.data["t"] in J.constants())
+
+
+def jacobian_name(term):
+    return "J" + term.name[1:]
