@@ -119,6 +119,17 @@ def boundary_loads(y, ds, load):
     return ufl.inner(load["fF"], w) * ds + load["qF"] * psi * ds
 
 
+def spring_residual(x, y, ds, load):
+    """An elastic (Winkler) bed on the facets of ds: the traction
+    -k_n (u.nu) nu - k_t u_tau, u_tau = u - (u.nu) nu, whose residual term is
+    int (k_n (u.nu)(w.nu) + k_t u_tau.w_tau) ds."""
+    u, _ = ufl.split(x)
+    w, _ = ufl.split(y)
+    n = ufl.FacetNormal(x.ufl_domain())
+    u_n, w_n = ufl.dot(u, n), ufl.dot(w, n)
+    return (load["k_n"] * u_n * w_n + load["k_t"] * ufl.dot(u - u_n * n, w - w_n * n)) * ds
+
+
 def contact_term(u, w, n, ds, data, law=p):
     """j(u, w) of (2.18), normal compliance on the contact facets of ds.
     Assembled alone, minus it is the nodal force of the foundation."""
@@ -201,10 +212,12 @@ def material_data(d):
 
 
 def load_data(d):
-    """The Constants of one named boundary's loads."""
+    """The Constants of one named boundary: its loads and its elastic bed."""
     return {
         "fF": Datum((d,), "traction", timed=True),     # traction (N/m^2)
         "qF": Datum((), "surface_charge", timed=True),  # surface charge (C/m^2)
+        "k_n": Datum((), "spring.normal"),              # bed stiffness along nu (N/m^3)
+        "k_t": Datum((), "spring.tangential"),          # bed stiffness across nu (N/m^3)
     }
 
 

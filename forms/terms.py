@@ -97,6 +97,8 @@ def model(d):
         Term("L_region", "region", "L", lambda c: pf.body_loads(c.y, c.m, c.data)),
         Term("F_boundary", "boundary", "F", lambda c: -pf.boundary_loads(c.y, c.m, c.load)),
         Term("L_boundary", "boundary", "L", lambda c: pf.boundary_loads(c.y, c.m, c.load)),
+        Term("F_spring", "boundary", "F", lambda c: pf.spring_residual(c.x, c.y, c.m, c.load),
+             where="spring"),
         Term("F_contact", "contact", "F",
              lambda c: pf.contact_residual(c.x, c.y, c.m, c.data, c.law)),
         # what the core reports

@@ -100,8 +100,9 @@ CASES = {
                                  "solver.petsc_options.-ksp_type = cg: not a PETSc option "
                                  "name (letters, digits and _; no leading dash)"),
     "no displacement condition": (SQUARE, ["boundaries.left={}"],
-                                  "boundaries: none has a displacement condition: with "
-                                  "frictionless contact nothing holds the body against sliding"),
+                                  "boundaries: none has a displacement condition (or a spring "
+                                  "bed with both stiffnesses): with frictionless contact nothing "
+                                  "holds the body against sliding"),
     "output is a file": (SQUARE, [], "cannot write there: it exists and is not a directory"),
     "missing required key": ("NO_CP", [], "contact.c_p: missing required key"),
     "Dirichlet value neither numbers nor \"exact\"": (

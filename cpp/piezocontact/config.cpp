@@ -476,7 +476,7 @@ void check_manufactured(const json& cfg, const std::string& source)
         fail(source, where + ": with a manufactured solution the Dirichlet data "
                              "are the exact solution's: use \"exact\"");
     }
-    for (const char* key : {"traction", "surface_charge"})
+    for (const char* key : {"traction", "surface_charge", "spring"})
       if (mms and bc.contains(key))
         fail(source, "boundaries." + name + "." + key + ": " + unused);
   }
@@ -593,7 +593,10 @@ void check_semantics(const json& cfg, const std::string& source)
   for (const auto& [name, bc] : cfg["boundaries"].items())
   {
     const std::string where = join("boundaries", name);
-    held = held or bc.contains("displacement");
+    // a bed that resists both along and across the normal holds it too
+    const json* bed = bc.contains("spring") ? &bc["spring"] : nullptr;
+    held = held or bc.contains("displacement")
+           or (bed and (*bed)["normal"].get<double>() > 0 and (*bed)["tangential"].get<double>() > 0);
     const bool contact = bc.value("contact", false);
     if (contact and !cfg.contains("contact"))
       fail(source, "contact: missing: " + where + " has \"contact\": true, which needs the "
@@ -611,10 +614,10 @@ void check_semantics(const json& cfg, const std::string& source)
                              "electrode's potential is an unknown, its charge is floating.charge)");
   }
   // Frictionless contact pushes only along the normal: without a clamped
-  // boundary the body can slide, and the Jacobian is singular
+  // boundary or a bed the body can slide, and the Jacobian is singular
   if (!held)
-    fail(source, "boundaries: none has a displacement condition: with frictionless contact "
-                 "nothing holds the body against sliding");
+    fail(source, "boundaries: none has a displacement condition (or a spring bed with both "
+                 "stiffnesses): with frictionless contact nothing holds the body against sliding");
   check_electrodes(cfg, source);
   check_manufactured(cfg, source);
 }
