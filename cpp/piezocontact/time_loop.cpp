@@ -33,6 +33,14 @@ std::string sci(double v)
   return buf;
 }
 
+/// %g, as the messages print times and steps
+std::string fmt_g(double v)
+{
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), "%g", v);
+  return buf;
+}
+
 /// What the test measures of a field: its relative residual, and its
 /// relative update once there is one
 double measured(const FieldNorms& f)
@@ -95,239 +103,334 @@ json timing(const NonlinearSystem& sys, double total_s, double newton_s,
           {"linear_solver", sys.linear.iterative() ? "iterative" : "direct"}};
 }
 
+/// The backward Euler loop of one run: configure the solver, then per step
+/// predict, try a Newton solve, and accept or reject it; each accepted step
+/// goes to the Record. One object per run (run() below).
+class TimeLoop
+{
+public:
+  TimeLoop(Problem& problem, const RunSettings& settings, const std::filesystem::path& out_dir,
+           json summary, bool resume, bool progress, const StepObserver& observer)
+      : _problem(problem), _settings(settings), _comm(problem.comm),
+        _record(problem, settings, out_dir, std::move(summary), resume, progress, observer),
+        _monitor({{"u", problem.u_dofs}, {"phi", problem.phi_dofs}}, problem.bc_dofs,
+                 problem.W->dofmap()->index_map->size_local()
+                     * problem.W->dofmap()->index_map_bs(),
+                 settings.newton.rtol, settings.newton.atol, problem.comm),
+        _x_vec(la::petsc::create_vector_wrap(*problem.x->x()), false), _newton(problem.comm),
+        _options(petsc_prefix, solver_options(settings)),
+        _system(configured(_newton, problem, _monitor, settings)),
+        _steps(settings.T, settings.steps, settings.newton.max_step_halvings),
+        _xa(problem.x->x()->mutable_array()), _xp(problem.x_prev->x()->mutable_array()),
+        _x_prev2(_xp.begin(), _xp.end()), _progress(progress)
+  {
+    set_callbacks();
+    if (resume)
+      restore();
+    else
+      first_jacobian("at the first Jacobian"); // initial scaling D (and first factorisation)
+    _record.begin(state_now(), states());
+    _callbacks_before = callback_seconds(*_system);
+  }
+
+  json run()
+  {
+    while (!_steps.done() and !(_signal = agreed_interrupt(_comm)))
+    {
+      const auto [t, k] = _steps.attempt();
+      predict(t, k);
+      const Attempt attempt = solve(t, k);
+      if (_signal or !attempt.converged)
+        restart_from_last_state();
+      if (_signal)
+        break;
+      if (attempt.converged)
+        accept(attempt.report);
+      else
+        reject(attempt);
+    }
+    if (_signal)
+      _record.interrupt(_signal, timing_now());
+    return _record.summary();
+  }
+
+private:
+  /// One Newton solve of a step
+  struct Attempt
+  {
+    SolveReport report;
+    bool converged = false;
+    std::string linear_failure; ///< a failed linear solve, if that ended it
+  };
+
+  /// Our defaults (LU by MUMPS, or the iterative solver), then the config's
+  static PetscOptionList solver_options(const RunSettings& settings)
+  {
+    PetscOptionList options = loop_defaults(settings.linear);
+    options.insert(options.end(), settings.petsc_options.begin(), settings.petsc_options.end());
+    return options;
+  }
+
+  /// The Newton solver's KSP under our prefix, and the system on it
+  static std::unique_ptr<NonlinearSystem> configured(nls::petsc::NewtonSolver& newton,
+                                                     Problem& problem,
+                                                     FieldwiseConvergence& monitor,
+                                                     const RunSettings& settings)
+  {
+    newton.get_krylov_solver().set_options_prefix(petsc_prefix);
+    newton.get_krylov_solver().set_from_options();
+    return std::make_unique<NonlinearSystem>(problem, monitor, newton.get_krylov_solver().ksp(),
+                                             settings.reuse_factorisation, settings.linear);
+  }
+
+  void set_callbacks()
+  {
+    NonlinearSystem& system = *_system;
+    _newton.setF([&system](const Vec x, Vec r) { system.F(x, r); }, system.b.vec());
+    _newton.setJ([&system](const Vec x, Mat A) { system.J(x, A); }, system.A.mat());
+    _newton.set_form(
+        [](Vec x)
+        {
+          VecGhostUpdateBegin(x, INSERT_VALUES, SCATTER_FORWARD);
+          VecGhostUpdateEnd(x, INSERT_VALUES, SCATTER_FORWARD);
+        });
+    // The built-in test keeps residual0 across solves and sees only u. A
+    // signal on any rank ends the solve too ("converged"; the loop then
+    // abandons the step), so that every rank stops at the same iteration.
+    _newton.set_convergence_check([this](const nls::petsc::NewtonSolver&, const Vec r)
+                                  { return converged(r); });
+    // x <- x - dx, and the floating potentials with it (floating.h), once
+    // the solve is checked
+    _newton.set_update([&system](const nls::petsc::NewtonSolver&, const Vec dx, Vec x)
+                       { system.update(dx, x); });
+    _newton.max_it = _settings.newton.max_iterations;
+    _newton.report = false;
+    _newton.error_on_nonconvergence = false;
+  }
+
+  /// The acceptance test of an iterate (fieldwise.h), with the floating
+  /// electrodes' charge equations and the balance of forces
+  std::pair<double, bool> converged(const Vec r)
+  {
+    PetscInt n;
+    VecGetLocalSize(r, &n);
+    const PetscScalar* ra;
+    VecGetArrayRead(r, &ra);
+    const std::span<const double> residual(ra, n);
+    bool ok = _monitor.check(_problem.x->x()->array().subspan(0, n), residual);
+    // an update that solved a locally linear problem exactly needs no
+    // second one to bound its error (fieldwise.h)
+    if (!ok and _monitor.residuals_converged())
+      ok = _system->exact_update();
+    if (!_system->floating.empty()) // the floating electrodes' charge equations
+    {
+      const double relative = _system->floating.relative_residual();
+      _monitor.history.back()["charge"] = {_system->floating.residual_norm(), relative, relative};
+      ok = ok and relative <= _settings.newton.rtol;
+    }
+    // The scaled test alone can pass with newtons left over where one
+    // block dwarfs the rest (a huge contact penalty): balance them too
+    _imbalance = force_imbalance(_problem, _system->balance, contact_force(_problem));
+    VecRestoreArrayRead(r, &ra);
+    PetscReal norm;
+    VecNorm(r, NORM_2, &norm);
+    _signal = agreed_interrupt(_problem.comm);
+    return {norm, (ok and _imbalance <= balance_tolerance) or _signal != 0};
+  }
+
+  /// The Jacobian made before the loop (and its factorisation, or the
+  /// floating electrodes' first solves): a failed linear solve there ends
+  /// the run as one inside it would after its last halving
+  void first_jacobian(const std::string& when)
+  {
+    try
+    {
+      _system->J(_x_vec.vec(), _system->A.mat());
+    }
+    catch (const LinearSolveFailure& e)
+    {
+      _record.fail(std::string(e.what()) + " " + when + (e.hint.empty() ? "" : ": " + e.hint));
+    }
+  }
+
+  /// --resume: the states of the checkpoint, and the Jacobian in use there
+  /// rebuilt where it was assembled (the same LU and convergence scaling as
+  /// if never stopped)
+  void restore()
+  {
+    const StepState& state = _record.checkpoint();
+    std::vector<double> xJ(_xa.size());
+    _record.read_states({_xp, _x_prev2, xJ});
+    std::copy(xJ.begin(), xJ.end(), _xa.begin());
+    _problem.model.constants.at("k")->value[0] = state.k_J;
+    first_jacobian("at the resumed Jacobian");
+    std::copy(_xp.begin(), _xp.end(), _xa.begin());
+    _steps.restore(state.nominal, state.t, state.k, state.k_last, state.step);
+    int rank;
+    MPI_Comm_rank(_comm, &rank);
+    if (_progress and rank == 0)
+      std::printf("[%s] resuming at step %d, t = %.6g\n", _record.label().c_str(), state.step,
+                  state.t);
+  }
+
+  /// k, loads and Dirichlet data at t_n; the predictor u^0 = u_{n-1} + k
+  /// du_{n-1}, phi^0 = phi_{n-1}; then the BCs
+  void predict(double t, double k)
+  {
+    _problem.set_time(t, k);
+    for (auto d : _problem.u_dofs)
+      _xa[d] = _xp[d] + k / _steps.k_last * (_xp[d] - _x_prev2[d]);
+    _problem.hold_floating_potentials(_xp); // phi^0 = phi_{n-1} there too
+    for (const auto& bc : _problem.bcs)
+      compat::set_bc_values(*bc, _xa);
+    _problem.x->x()->scatter_fwd();
+  }
+
+  Attempt solve(double t, double k)
+  {
+    _monitor.history.clear();
+    const int f0 = _system->factorisation.count;
+    common::Timer newton_timer("piezocontact: Newton solve");
+    std::pair<int, bool> outcome;
+    Attempt attempt;
+    try
+    {
+      outcome = _newton.solve(_x_vec.vec());
+    }
+    catch (const LinearSolveFailure& e)
+    {
+      if (!e.retry)
+        _record.fail(std::string(e.what()) + " at t = " + json(t).dump()
+                     + (e.hint.empty() ? "" : ": " + e.hint));
+      outcome = {_newton.iteration(), false};
+      attempt.linear_failure = e.what();
+    }
+    catch (const std::runtime_error& e) // a PETSc call failed (QuietPetscErrors)
+    {
+      _record.fail("the linear solver failed at t = " + json(t).dump() + ": "
+                   + printable(std::string(e.what()), 300));
+    }
+    const auto [its, converged] = outcome;
+    _problem.x->x()->scatter_fwd();
+    _newton_s += newton_timer.stop();
+    _newton_its += its;
+    attempt.converged = converged;
+    attempt.report = {t,
+                      k,
+                      its,
+                      _system->factorisation.count - f0,
+                      _newton.krylov_iterations(),
+                      _monitor.history,
+                      std::span<const double>(_system->unconstrained)};
+    return attempt;
+  }
+
+  /// Back to the last accepted state
+  void restart_from_last_state()
+  {
+    std::copy(_xp.begin(), _xp.end(), _xa.begin());
+    _problem.x->x()->scatter_fwd();
+  }
+
+  void accept(const SolveReport& report)
+  {
+    _steps.accept();
+    // Recorded while x_prev is still u_{n-1}: the stress holds the velocity
+    _record.accept(state_now(), report,
+                   {std::span<const double>(_xa), _xp, _system->x_assembled}, _steps.done(),
+                   timing_now());
+    std::copy(_xp.begin(), _xp.end(), _x_prev2.begin());
+    std::copy(_xa.begin(), _xa.end(), _xp.begin());
+  }
+
+  /// A failed solve: retry with k halved, or stop (exit 3) after the last
+  /// halving
+  void reject(const Attempt& attempt)
+  {
+    const std::string what = failure(attempt);
+    const std::string action = _steps.reject();
+    _record.reject(attempt.report, action);
+    if (action == "stop")
+      _record.fail(what + stalled(_monitor.history, _settings.newton.rtol) + "; gave up after "
+                   + std::to_string(_steps.max_halvings) + " halvings of the time step");
+    int rank;
+    MPI_Comm_rank(_comm, &rank);
+    if (rank == 0)
+      std::printf("[%s] %s: retrying with k = %g\n", _record.label().c_str(), what.c_str(),
+                  _steps.k);
+  }
+
+  /// What a failed solve left: the residuals, updates, charges and balance
+  std::string failure(const Attempt& attempt) const
+  {
+    const auto& last = _monitor.history.back();
+    const SolveReport& r = attempt.report;
+    std::string what = "Newton did not converge at t = " + fmt_g(r.t) + " (k = " + fmt_g(r.k)
+                       + ") in " + std::to_string(r.newton_iterations) + " iterations: "
+                       + (attempt.linear_failure.empty() ? "" : attempt.linear_failure + "; ")
+                       + "relative residuals u = " + sci(last.at("u").relative)
+                       + ", phi = " + sci(last.at("phi").relative) + "; relative updates u = "
+                       + sci(last.at("u").update) + ", phi = " + sci(last.at("phi").update);
+    if (last.contains("charge"))
+      what += ", floating charges = " + sci(last.at("charge").relative);
+    if (_imbalance > balance_tolerance)
+      what += ", forces unbalanced by " + sci(_imbalance)
+              + " of the contact and support forces (too ill-conditioned for double precision?"
+              + (_problem.contact_pressure
+                     ? " contact.c_p = " + sci(_problem.model.constants.at("c_p")->value[0])
+                     : std::string())
+              + ")";
+    return what;
+  }
+
+  StepState state_now() const
+  {
+    StepState s;
+    s.step = _steps.accepted;
+    s.nominal = _steps.nominal_steps();
+    s.t = _steps.t;
+    s.k = _steps.k;
+    s.k_last = _steps.k_last;
+    s.k_J = _system->k_assembled;
+    return s;
+  }
+
+  StateViews states() const
+  {
+    return {std::span<const double>(_xp), _x_prev2, _system->x_assembled};
+  }
+
+  json timing_now() const
+  {
+    return timing(*_system, _total.elapsed()[0], _newton_s,
+                  callback_seconds(*_system) - _callbacks_before, _newton_its);
+  }
+
+  const common::Timer _total{"piezocontact: run"};
+  Problem& _problem;
+  const RunSettings& _settings;
+  const MPI_Comm _comm;
+  Record _record;
+  FieldwiseConvergence _monitor;
+  la::petsc::Vector _x_vec;
+  nls::petsc::NewtonSolver _newton;
+  const ScopedPetscOptions _options;
+  std::unique_ptr<NonlinearSystem> _system;
+  StepControl _steps;
+  std::span<double> _xa, _xp;
+  std::vector<double> _x_prev2; ///< u_{n-2}, for the predictor
+  const bool _progress;
+  int _signal = 0;
+  double _imbalance = 0.0; ///< force_imbalance at the last iterate
+  double _callbacks_before = 0.0, _newton_s = 0.0;
+  int _newton_its = 0;
+};
 } // namespace
 
 json run(Problem& problem, const RunSettings& settings, const std::filesystem::path& out_dir,
          json summary, bool resume, bool progress, const StepObserver& observer)
 {
-  const common::Timer total("piezocontact: run");
-  const MPI_Comm comm = problem.comm;
-  Record record(problem, settings, out_dir, std::move(summary), resume, progress, observer);
-  const auto& imap = *problem.W->dofmap()->index_map;
-  const int bs = problem.W->dofmap()->index_map_bs();
-  FieldwiseConvergence monitor({{"u", problem.u_dofs}, {"phi", problem.phi_dofs}},
-                               problem.bc_dofs, imap.size_local() * bs, settings.newton.rtol,
-                               settings.newton.atol, comm);
-  la::petsc::Vector x_vec(la::petsc::create_vector_wrap(*problem.x->x()), false);
-  Vec x = x_vec.vec();
-  nls::petsc::NewtonSolver newton(comm);
-  // Our prefix, our defaults (LU by MUMPS, or the iterative solver), then
-  // the config's options
-  PetscOptionList options = loop_defaults(settings.linear);
-  options.insert(options.end(), settings.petsc_options.begin(), settings.petsc_options.end());
-  const ScopedPetscOptions scoped_options(petsc_prefix, options);
-  newton.get_krylov_solver().set_options_prefix(petsc_prefix);
-  newton.get_krylov_solver().set_from_options();
-  NonlinearSystem system(problem, monitor, newton.get_krylov_solver().ksp(),
-                         settings.reuse_factorisation, settings.linear);
-  newton.setF([&system](const Vec x, Vec r) { system.F(x, r); }, system.b.vec());
-  newton.setJ([&system](const Vec x, Mat A) { system.J(x, A); }, system.A.mat());
-  newton.set_form(
-      [](Vec x)
-      {
-        VecGhostUpdateBegin(x, INSERT_VALUES, SCATTER_FORWARD);
-        VecGhostUpdateEnd(x, INSERT_VALUES, SCATTER_FORWARD);
-      });
-  // The built-in test keeps residual0 across solves and sees only u. A
-  // signal on any rank ends the solve too ("converged"; the loop then
-  // abandons the step), so that every rank stops at the same iteration.
-  int signal = 0;
-  double imbalance = 0.0; // force_imbalance at the last iterate
-  newton.set_convergence_check(
-      [&monitor, &problem, &signal, &system, &imbalance,
-       monitor_rtol = settings.newton.rtol](const nls::petsc::NewtonSolver&,
-                                                         const Vec r)
-      {
-        PetscInt n;
-        VecGetLocalSize(r, &n);
-        const PetscScalar* ra;
-        VecGetArrayRead(r, &ra);
-        const std::span<const double> residual(ra, n);
-        bool ok = monitor.check(problem.x->x()->array().subspan(0, n), residual);
-        // an update that solved a locally linear problem exactly needs no
-        // second one to bound its error (fieldwise.h)
-        if (!ok and monitor.residuals_converged())
-          ok = system.exact_update();
-        if (!system.floating.empty()) // the floating electrodes' charge equations
-        {
-          const double relative = system.floating.relative_residual();
-          monitor.history.back()["charge"]
-              = {system.floating.residual_norm(), relative, relative};
-          ok = ok and relative <= monitor_rtol;
-        }
-        // The scaled test alone can pass with newtons left over where one
-        // block dwarfs the rest (a huge contact penalty): balance them too
-        imbalance = force_imbalance(problem, system.balance, contact_force(problem));
-        VecRestoreArrayRead(r, &ra);
-        PetscReal norm;
-        VecNorm(r, NORM_2, &norm);
-        signal = agreed_interrupt(problem.comm);
-        return std::pair<double, bool>(norm, (ok and imbalance <= balance_tolerance)
-                                                 or signal != 0);
-      });
-  // x <- x - dx, and the floating potentials with it (floating.h), once
-  // the solve is checked
-  newton.set_update([&system](const nls::petsc::NewtonSolver&, const Vec dx, Vec x)
-                    { system.update(dx, x); });
-  newton.max_it = settings.newton.max_iterations;
-  newton.report = false;
-  newton.error_on_nonconvergence = false;
-
-  // The Jacobian made before the loop (and its factorisation, or the
-  // floating electrodes' first solves): a failed linear solve there ends
-  // the run as one inside it would after its last halving
-  const auto first_jacobian = [&](const std::string& when)
-  {
-    try
-    {
-      system.J(x, system.A.mat());
-    }
-    catch (const LinearSolveFailure& e)
-    {
-      record.fail(std::string(e.what()) + " " + when + (e.hint.empty() ? "" : ": " + e.hint));
-    }
-  };
-  StepControl steps(settings.T, settings.steps, settings.newton.max_step_halvings);
-  auto xa = problem.x->x()->mutable_array();
-  auto xp = problem.x_prev->x()->mutable_array();
-  std::vector<double> x_prev2(xp.begin(), xp.end()); // u_{n-2}, for the predictor
-  const auto state_now = [&]
-  {
-    StepState s;
-    s.step = steps.accepted;
-    s.nominal = steps.nominal_steps();
-    s.t = steps.t;
-    s.k = steps.k;
-    s.k_last = steps.k_last;
-    s.k_J = system.k_assembled;
-    return s;
-  };
-  const auto states = [&]() -> StateViews
-  { return {std::span<const double>(xp), x_prev2, system.x_assembled}; };
-  if (resume)
-  {
-    // The Jacobian in use at the checkpoint, rebuilt where it was
-    // assembled: the same LU and convergence scaling as if never stopped
-    const StepState& state = record.checkpoint();
-    std::vector<double> xJ(xa.size());
-    record.read_states({xp, x_prev2, xJ});
-    std::copy(xJ.begin(), xJ.end(), xa.begin());
-    problem.model.constants.at("k")->value[0] = state.k_J;
-    first_jacobian("at the resumed Jacobian");
-    std::copy(xp.begin(), xp.end(), xa.begin());
-    steps.restore(state.nominal, state.t, state.k, state.k_last, state.step);
-    int rank;
-    MPI_Comm_rank(comm, &rank);
-    if (progress and rank == 0)
-      std::printf("[%s] resuming at step %d, t = %.6g\n", record.label().c_str(), state.step,
-                  state.t);
-  }
-  else
-    first_jacobian("at the first Jacobian"); // initial scaling D (and first factorisation)
-  record.begin(state_now(), states());
-
-  const double callbacks_before = callback_seconds(system);
-  double newton_s = 0.0;
-  int newton_its = 0;
-  const auto run_timing = [&]
-  {
-    return timing(system, total.elapsed()[0], newton_s,
-                  callback_seconds(system) - callbacks_before, newton_its);
-  };
-  while (!steps.done() and !(signal = agreed_interrupt(comm)))
-  {
-    const auto [t, k] = steps.attempt();
-    problem.set_time(t, k); // k, and loads and Dirichlet data at t_n
-    // Predictor u^0 = u_{n-1} + k du_{n-1}, phi^0 = phi_{n-1}; then the BCs
-    for (auto d : problem.u_dofs)
-      xa[d] = xp[d] + k / steps.k_last * (xp[d] - x_prev2[d]);
-    problem.hold_floating_potentials(xp); // phi^0 = phi_{n-1} there too
-    for (const auto& bc : problem.bcs)
-      compat::set_bc_values(*bc, xa);
-    problem.x->x()->scatter_fwd();
-    monitor.history.clear();
-    const int f0 = system.factorisation.count;
-    common::Timer newton_timer("piezocontact: Newton solve");
-    std::pair<int, bool> outcome;
-    std::string linear_failure; // a failed linear solve, if that ended the solve
-    try
-    {
-      outcome = newton.solve(x);
-    }
-    catch (const LinearSolveFailure& e)
-    {
-      if (!e.retry)
-        record.fail(std::string(e.what()) + " at t = " + json(t).dump()
-                    + (e.hint.empty() ? "" : ": " + e.hint));
-      outcome = {newton.iteration(), false};
-      linear_failure = e.what();
-    }
-    catch (const std::runtime_error& e) // a PETSc call failed (QuietPetscErrors)
-    {
-      record.fail("the linear solver failed at t = " + json(t).dump() + ": "
-                  + printable(std::string(e.what()), 300));
-    }
-    const auto [its, converged] = outcome;
-    problem.x->x()->scatter_fwd();
-    newton_s += newton_timer.stop();
-    newton_its += its;
-    SolveReport report{t, k, its, system.factorisation.count - f0, newton.krylov_iterations(),
-                       monitor.history,
-                       std::span<const double>(system.unconstrained)};
-    if (signal or !converged)
-    {
-      std::copy(xp.begin(), xp.end(), xa.begin()); // back to the last accepted state
-      problem.x->x()->scatter_fwd();
-    }
-    if (signal)
-      break;
-    if (!converged)
-    {
-      const auto& last = monitor.history.back();
-      char what[1024];
-      std::snprintf(what, sizeof(what),
-                    "Newton did not converge at t = %g (k = %g) in %d iterations: %s"
-                    "relative residuals u = %s, phi = %s; relative updates u = %s, phi = %s%s%s",
-                    t, k, its,
-                    linear_failure.empty() ? "" : (linear_failure + "; ").c_str(),
-                    sci(last.at("u").relative).c_str(),
-                    sci(last.at("phi").relative).c_str(),
-                    sci(last.at("u").update).c_str(),
-                    sci(last.at("phi").update).c_str(),
-                    last.contains("charge")
-                        ? (", floating charges = " + sci(last.at("charge").relative)).c_str()
-                        : "",
-                    imbalance <= balance_tolerance
-                        ? ""
-                        : (", forces unbalanced by " + sci(imbalance)
-                           + " of the contact and support forces (too ill-conditioned for "
-                             "double precision?"
-                           + (problem.contact_pressure
-                                  ? " contact.c_p = "
-                                        + sci(problem.model.constants.at("c_p")->value[0])
-                                  : std::string())
-                           + ")")
-                              .c_str());
-      const std::string action = steps.reject();
-      record.reject(report, action);
-      if (action == "stop")
-        record.fail(std::string(what) + stalled(monitor.history, settings.newton.rtol) + "; gave up after "
-                    + std::to_string(steps.max_halvings) + " halvings of the time step");
-      int rank;
-      MPI_Comm_rank(comm, &rank);
-      if (rank == 0)
-        std::printf("[%s] %s: retrying with k = %g\n", record.label().c_str(), what, steps.k);
-      continue;
-    }
-    steps.accept();
-    // Recorded while x_prev is still u_{n-1}: the stress holds the velocity
-    record.accept(state_now(), report, {std::span<const double>(xa), xp, system.x_assembled},
-                  steps.done(), run_timing());
-    std::copy(xp.begin(), xp.end(), x_prev2.begin());
-    std::copy(xa.begin(), xa.end(), xp.begin());
-  }
-  if (signal)
-    record.interrupt(signal, run_timing());
-  return record.summary();
+  return TimeLoop(problem, settings, out_dir, std::move(summary), resume, progress, observer)
+      .run();
 }
 } // namespace piezocontact
