@@ -42,7 +42,8 @@ import ufl  # noqa: E402
 from dolfinx import fem  # noqa: E402
 from piezocontact._compat import colliding_cells, functionspace  # noqa: E402
 
-from piezodemos import compare, runs  # noqa: E402
+from piezocontact import compare  # noqa: E402
+from piezodemos import runs  # noqa: E402
 
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent

@@ -27,7 +27,7 @@ from pathlib import Path
 
 import piezocontact
 import ufl
-from piezodemos import compare
+from piezocontact import compare
 
 HERE = Path(__file__).resolve().parent
 # -

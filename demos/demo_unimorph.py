@@ -44,7 +44,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from mpl_toolkits.mplot3d.art3d import Poly3DCollection  # noqa: E402
 from piezocontact import _compat as compat  # noqa: E402
-from piezodemos import compare, runs  # noqa: E402
+from piezocontact import compare  # noqa: E402
+from piezodemos import runs  # noqa: E402
 
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent

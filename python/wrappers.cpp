@@ -19,6 +19,8 @@ using dolfinx_wrappers::MPICommWrapper;
 
 namespace
 {
+/// The mesh tools of the Python front end (mesh_tools.py)
+using PyMeshConverter = std::function<int(const MeshConversion&)>;
 /// A model factory written in Python: (NamedMesh, ModelSpec) -> Model
 using PyModelFactory = std::function<Model(const NamedMesh&, const ModelSpec&)>;
 /// A time loop written in Python: (Problem, settings, output, summary text,
@@ -86,6 +88,13 @@ void declare_model(py::module_& m)
       .def("region_cells", &NamedMesh::region_cells, py::arg("name"))
       .def("boundary_facets_of", &NamedMesh::boundary_facets_of, py::arg("boundary"),
            py::arg("region"));
+
+  class_<MeshConversion>(m, "MeshConversion", "A mesh for a tool to make (mesh.h)")
+      .def_ro("type", &MeshConversion::type)
+      .def_prop_ro("input", [](const MeshConversion& j) { return j.input.string(); })
+      .def_prop_ro("target", [](const MeshConversion& j) { return j.target.string(); })
+      .def_prop_ro("log", [](const MeshConversion& j) { return j.log.string(); })
+      .def_ro("size", &MeshConversion::size);
 
   class_<ModelSpec>(m, "ModelSpec", "Which pieces of the mesh carry which terms (model.h)")
       .def(py::init<>())
@@ -364,12 +373,12 @@ PIEZO_MODULE(cpp, m)
       [](const std::string& cfg, const std::string& output, const std::string& source,
          const std::string& solver, bool progress, std::optional<std::string> resume,
          MPICommWrapper comm, const PyModelFactory& make_model,
-         const std::optional<PyEngine>& loop,
+         const PyMeshConverter& convert_mesh, const std::optional<PyEngine>& loop,
          const std::optional<std::function<void(int, const std::string&)>>& observer)
       {
         const json summary = resume ? json::parse(*resume) : json();
         RunRequest request{json::parse(cfg), output, source, solver, progress,
-                           resume ? &summary : nullptr};
+                           resume ? &summary : nullptr, convert_mesh};
         StepObserver on_step = nullptr;
         if (observer)
           on_step = [&observer](int n, const json& step) { (*observer)(n, step.dump()); };
@@ -379,21 +388,23 @@ PIEZO_MODULE(cpp, m)
       },
       py::arg("cfg"), py::arg("output"), py::arg("source"), py::arg("solver"),
       py::arg("progress"), nullable("resume"), py::arg("comm"), py::arg("make_model"),
-      py::arg("engine") = py::none(), py::arg("observer") = py::none(),
+      py::arg("convert_mesh"), py::arg("engine") = py::none(), py::arg("observer") = py::none(),
       "A run from a validated config (driver.h); the summary as JSON text");
   m.def(
       "command_line",
       [](const std::string& program, const std::vector<std::string>& args, MPICommWrapper comm,
          const std::vector<std::tuple<std::string, std::string, PyModelFactory,
-                                      std::optional<PyEngine>>>& choices)
+                                      std::optional<PyEngine>>>& choices,
+         const PyMeshConverter& convert_mesh)
       {
         silence_hdf5_errors();
         std::vector<EngineChoice> engines;
         for (const auto& [name, solver, make_model, loop] : choices)
           engines.push_back({name, solver, factory(make_model), engine(loop)});
-        return command_line(program, args, comm.get(), engines);
+        return command_line(program, args, comm.get(), engines, convert_mesh);
       },
       py::arg("program"), py::arg("args"), py::arg("comm"), py::arg("engines"),
+      py::arg("convert_mesh"),
       "The command line of piezo-contact with --engine choosing among "
       "(name, solver, model factory, time loop or None); returns the exit code");
 }

@@ -10,7 +10,7 @@ import shutil
 import numpy as np
 import pytest
 from conftest import ENGINES, run_solver
-from piezodemos import compare
+from piezocontact import compare
 
 TOL = 1e-8  # both converge to round-off: 1e-10 per field (cpp), 1e-11 increments (reference)
 # Same loop and UFL, kernels compiled apart (ffcx AOT vs dolfinx JIT flags)

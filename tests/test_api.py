@@ -9,7 +9,7 @@ import piezocontact
 import pytest
 import ufl
 from conftest import SQUARE
-from piezodemos import compare
+from piezocontact import compare
 
 TOL = 1e-8
 SMALL = ["mesh.n=8", "time.steps=4", "output.xdmf=false", "output.nodal=none"]

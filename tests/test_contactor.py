@@ -16,7 +16,8 @@ from mpi4py import MPI
 from piezocontact import cpp
 from piezocontact._compat import meshtags
 from piezocontact.model import python_mesh
-from piezodemos import compare, figures
+from piezocontact import compare
+from piezodemos import figures
 
 CONTACTOR = ROOT / "demos" / "contactor.json"
 VARIANT = ROOT / "demos" / "contactor_in_contact.json"

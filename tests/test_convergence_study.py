@@ -9,7 +9,7 @@ import pytest
 import ufl
 from conftest import ENV, ROOT
 from dolfinx import fem
-from piezodemos import compare
+from piezocontact import compare
 
 sys.path.insert(0, str(ROOT / "demos"))
 

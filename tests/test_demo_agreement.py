@@ -10,7 +10,7 @@ from pathlib import Path
 
 import pytest
 from conftest import ROOT, run_solver
-from piezodemos import compare
+from piezocontact import compare
 
 OF_SIZE, BY_VALUE = 1e-9, 1e-8
 SMALL = {  # the smallest honest size of each: every feature it has still at work

@@ -6,7 +6,7 @@ run (the contactor variant: the contact zone grows as the body relaxes)."""
 import numpy as np
 import pytest
 from conftest import ROOT, run_solver
-from piezodemos import compare
+from piezocontact import compare
 
 VARIANT = ROOT / "demos" / "contactor_in_contact.json"
 SMALL = ["mesh.size=0.2", "time.steps=10", "output.nodal=all"]

@@ -10,6 +10,7 @@
 // could not be written (disk full), 128 + signal number when stopped by
 // SIGINT (130) or SIGTERM (143).
 #include "compiled_model.h"
+#include "mesh_tools.h"
 
 #include <dolfinx/common/log.h>
 #include <petscsys.h>
@@ -26,7 +27,8 @@ int main(int argc, char* argv[])
   piezocontact::silence_hdf5_errors(); // failures are reported in one line
   const std::vector<std::string> args(argv + 1, argv + argc);
   const int code = piezocontact::command_line(
-      "piezo-contact", args, MPI_COMM_WORLD, {{"cpp", "cpp", piezocontact::app::compiled_model}});
+      "piezo-contact", args, MPI_COMM_WORLD, {{"cpp", "cpp", piezocontact::app::compiled_model}},
+      piezocontact::app::convert_mesh);
   PetscFinalize();
   return code;
 }

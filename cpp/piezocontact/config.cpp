@@ -156,44 +156,43 @@ json check_history(const json& value, const std::string& path, const std::string
   return h;
 }
 
-json check(const json& value, const json& rule_, const std::string& path,
-           const std::string& source, int d)
+/// One value against one rule of the schema: a function per rule type
+struct Check
 {
-  // {"ref": KEY}: the rule of definitions.KEY or of the top-level key KEY
-  const json& rule = !rule_.contains("ref") ? rule_
-                     : schema()["definitions"].contains(rule_["ref"].get<std::string>())
-                         ? schema()["definitions"][rule_["ref"].get<std::string>()]
-                         : schema()["keys"][rule_["ref"].get<std::string>()];
-  // a timed datum: the value, or {"value": the value, "history": ...}
-  if (rule.value("timed", false) and value.is_object())
-  {
-    for (const auto& [k, _] : value.items())
-      if (k != "value" and k != "history")
-        fail(source, join(path, k) + ": unknown key (a timed datum has value and history)");
-    for (const char* k : {"value", "history"})
-      if (!value.contains(k))
-        fail(source, join(path, k) + ": missing required key (a timed datum has value and history)");
-    json plain = rule;
-    plain.erase("timed");
-    return {{"value", check(value["value"], plain, join(path, "value"), source, d)},
-            {"history", check_history(value["history"], join(path, "history"), source)}};
-  }
-  const std::string t = rule["type"];
-  // a word allowed instead of the value
-  const json alternative = rule.value("alternative", json());
-  if (!alternative.is_null() and value == alternative)
-    return value;
-  auto wrong = [&](const std::string& expected)
+  const json& value;
+  const json& rule;
+  const std::string& path;
+  const std::string& source;
+  int d;
+  json alternative; ///< a word allowed instead of the value
+
+  [[noreturn]] void wrong(const std::string& expected) const
   {
     fail(source, path + " = " + fmt(value) + ": expected " + expected
                      + (alternative.is_null() ? "" : " or " + fmt(alternative)));
-  };
-  if (value.is_string() and !is_utf8(value.get<std::string>()))
-    wrong("text in UTF-8");
+  }
 
-  if (t == "one_of")
+  json operator()() const
   {
-    // the option of the value's kind (a list or not) judges it
+    using Method = json (Check::*)() const;
+    static const std::map<std::string, Method> by_type
+        = {{"one_of", &Check::one_of},   {"integers", &Check::integers},
+           {"object", &Check::object},   {"map", &Check::map},
+           {"number", &Check::number},   {"integer", &Check::integer},
+           {"boolean", &Check::boolean}, {"string", &Check::string},
+           {"scalar", &Check::scalar},   {"vector", &Check::vector},
+           {"matrix", &Check::matrix},   {"pairs", &Check::pairs},
+           {"points", &Check::points}};
+    const std::string t = rule["type"];
+    const auto method = by_type.find(t);
+    if (method == by_type.end())
+      throw std::logic_error("schema: unknown type " + t);
+    return (this->*(method->second))();
+  }
+
+  /// The option of the value's kind (a list or not) judges it
+  json one_of() const
+  {
     for (const auto& option : rule["options"])
     {
       const std::string ot = option["type"];
@@ -203,7 +202,8 @@ json check(const json& value, const json& rule_, const std::string& path,
     }
     wrong(rule["expected"].get<std::string>());
   }
-  if (t == "integers")
+
+  json integers() const
   {
     const std::size_t n = rule["length"];
     if (!(value.is_array() and value.size() == n
@@ -214,7 +214,8 @@ json check(const json& value, const json& rule_, const std::string& path,
       check_bounds(value[i], rule, path + "[" + std::to_string(i) + "]", source);
     return value;
   }
-  if (t == "object")
+
+  json object() const
   {
     if (!value.is_object())
       wrong("an object");
@@ -223,7 +224,6 @@ json check(const json& value, const json& rule_, const std::string& path,
     for (const auto& [k, _] : keys.items())
       names.push_back(k);
     for (const auto& [k, _] : value.items())
-    {
       if (!keys.contains(k))
       {
         const std::string near = closest_key(k, names);
@@ -231,7 +231,6 @@ json check(const json& value, const json& rule_, const std::string& path,
             = near.empty() ? "" : " (did you mean '" + join(path, near) + "'?)";
         fail(source, join(path, k) + ": unknown key" + hint);
       }
-    }
     json out = json::object();
     for (const auto& [k, sub] : keys.items())
     {
@@ -249,7 +248,8 @@ json check(const json& value, const json& rule_, const std::string& path,
     }
     return out;
   }
-  if (t == "map")
+
+  json map() const
   {
     if (!value.is_object())
       wrong("an object");
@@ -262,14 +262,16 @@ json check(const json& value, const json& rule_, const std::string& path,
     }
     return out;
   }
-  if (t == "number")
+
+  json number() const
   {
     if (!is_number(value))
       wrong("a number");
     check_bounds(value, rule, path, source);
     return value.get<double>();
   }
-  if (t == "integer")
+
+  json integer() const
   {
     if (!value.is_number_integer())
       wrong("an integer");
@@ -280,13 +282,15 @@ json check(const json& value, const json& rule_, const std::string& path,
       fail(source, path + " = " + fmt(value) + ": beyond the range of a 32-bit integer");
     return value.get<int>();
   }
-  if (t == "boolean")
+
+  json boolean() const
   {
     if (!value.is_boolean())
       wrong("true or false");
     return value;
   }
-  if (t == "string")
+
+  json string() const
   {
     if (!value.is_string())
       wrong("a string");
@@ -303,15 +307,17 @@ json check(const json& value, const json& rule_, const std::string& path,
     }
     return value;
   }
-  if (t == "scalar")
+
+  json scalar() const
   {
     if (!(value.is_string() or value.is_boolean() or is_number(value)))
       wrong("a string, number or boolean");
     return value;
   }
-  if (t == "vector")
+
+  /// "nullable": a component may be null (left free), not all of them
+  json vector() const
   {
-    // "nullable": a component may be null (left free), not all of them
     const bool nullable = rule.value("nullable", false);
     auto fits = [&](std::size_t n)
     {
@@ -343,7 +349,8 @@ json check(const json& value, const json& rule_, const std::string& path,
           + (nullable ? ", null for a free component" : "")
           + (rule["length"] == "d" ? d ? " (the mesh is " + std::to_string(d) + "D)" : " (2D or 3D)" : ""));
   }
-  if (t == "matrix")
+
+  json matrix() const
   {
     std::vector<std::string> options;
     for (int dd : dimensions(d))
@@ -358,14 +365,16 @@ json check(const json& value, const json& rule_, const std::string& path,
     wrong("a " + either(options) + " matrix (a list of rows of numbers"
           + (d ? ", the mesh is " + std::to_string(d) + "D)" : ", 2D or 3D)"));
   }
-  if (t == "pairs")
+
+  json pairs() const
   {
     if (!(value.is_array() and std::all_of(value.begin(), value.end(),
                                            [](const json& p) { return is_number_list(p, 2); })))
       wrong("a list of [t, value] pairs");
     return to_doubles(value);
   }
-  if (t == "points")
+
+  json points() const
   {
     for (int dd : dimensions(d))
       if (value.is_array()
@@ -375,7 +384,40 @@ json check(const json& value, const json& rule_, const std::string& path,
     wrong(d == 2 ? "a list of [x, y] points" : d == 3 ? "a list of [x, y, z] points"
                                                       : "a list of [x, y] or of [x, y, z] points");
   }
-  throw std::logic_error("schema: unknown type " + t);
+};
+
+/// A timed datum: the value, or {"value": the value, "history": ...}
+json check_timed(const json& value, const json& rule, const std::string& path,
+                 const std::string& source, int d)
+{
+  for (const auto& [k, _] : value.items())
+    if (k != "value" and k != "history")
+      fail(source, join(path, k) + ": unknown key (a timed datum has value and history)");
+  for (const char* k : {"value", "history"})
+    if (!value.contains(k))
+      fail(source, join(path, k) + ": missing required key (a timed datum has value and history)");
+  json plain = rule;
+  plain.erase("timed");
+  return {{"value", check(value["value"], plain, join(path, "value"), source, d)},
+          {"history", check_history(value["history"], join(path, "history"), source)}};
+}
+
+json check(const json& value, const json& rule_, const std::string& path,
+           const std::string& source, int d)
+{
+  // {"ref": KEY}: the rule of definitions.KEY or of the top-level key KEY
+  const json& rule = !rule_.contains("ref") ? rule_
+                     : schema()["definitions"].contains(rule_["ref"].get<std::string>())
+                         ? schema()["definitions"][rule_["ref"].get<std::string>()]
+                         : schema()["keys"][rule_["ref"].get<std::string>()];
+  if (rule.value("timed", false) and value.is_object())
+    return check_timed(value, rule, path, source, d);
+  const Check c{value, rule, path, source, d, rule.value("alternative", json())};
+  if (!c.alternative.is_null() and value == c.alternative)
+    return value;
+  if (value.is_string() and !is_utf8(value.get<std::string>()))
+    c.wrong("text in UTF-8");
+  return c();
 }
 
 using Matrix = std::vector<std::vector<double>>;

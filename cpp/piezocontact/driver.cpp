@@ -161,7 +161,8 @@ json run_config(const RunRequest& request, MPI_Comm comm, const ModelFactory& ma
   const QuietPetscErrors quiet; // PETSc failures become exceptions, not dumps
   std::optional<std::filesystem::path> mesh_file;
   if (!request.resume)
-    mesh_file = prepare_mesh(request.cfg, request.source, request.output, comm);
+    mesh_file = prepare_mesh(request.cfg, request.source, request.output, comm,
+                             request.convert_mesh);
   else if (!(*request.resume)["mesh_file"].is_null())
     mesh_file = (*request.resume)["mesh_file"].get<std::string>();
   if (mesh_file)
@@ -270,7 +271,8 @@ Arguments parse_arguments(const std::vector<std::string>& args,
 } // namespace
 
 int command_line(const std::string& program, const std::vector<std::string>& args,
-                 MPI_Comm comm, const std::vector<EngineChoice>& engines)
+                 MPI_Comm comm, const std::vector<EngineChoice>& engines,
+                 const MeshConverter& convert_mesh)
 {
   int rank;
   MPI_Comm_rank(comm, &rank);
@@ -304,7 +306,7 @@ int command_line(const std::string& program, const std::vector<std::string>& arg
   const auto& [name, solver, make_model, engine] = *chosen;
   try
   {
-    RunRequest request{json(), output_dir, config_path, solver, !quiet};
+    RunRequest request{json(), output_dir, config_path, solver, !quiet, nullptr, convert_mesh};
     if (resume)
     {
       const auto [summary, cfg] = resumable_summary(output_dir, overrides, solver);

@@ -6,6 +6,7 @@
 #pragma once
 
 #include "config.h"
+#include "mesh.h"
 #include "model.h"
 #include "problem.h"
 #include "settings.h"
@@ -36,6 +37,7 @@ struct RunRequest
   std::string solver = "cpp";       ///< recorded in the summary as "solver"
   bool progress = true;             ///< one line per step on rank 0
   const json* resume = nullptr;     ///< the summary to continue (resumable_summary)
+  MeshConverter convert_mesh;       ///< makes "gmsh" and "msh" meshes (mesh.h)
 };
 
 /// Mesh, model, Problem, time loop; the run's summary. Throws ConfigError,
@@ -71,6 +73,8 @@ struct EngineChoice
 ///   [--engine NAME] when several engines are given
 /// Prints one line per error; returns the exit code (0, 2 bad input,
 /// 3 Newton failure, 4 output error, 128 + signal).
+/// `convert_mesh` makes the "gmsh" and "msh" meshes (mesh.h).
 int command_line(const std::string& program, const std::vector<std::string>& args,
-                 MPI_Comm comm, const std::vector<EngineChoice>& engines);
+                 MPI_Comm comm, const std::vector<EngineChoice>& engines,
+                 const MeshConverter& convert_mesh);
 } // namespace piezocontact

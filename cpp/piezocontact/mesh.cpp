@@ -21,18 +21,6 @@ const std::map<std::string, std::pair<int, int>> box_sides
 /// The one region of a mesh without named cell groups
 constexpr const char* whole_body = "body";
 
-// What a mesh-generator child process inherits: not the MPI job's
-// variables, which would make its mpi4py join (and break) this job
-const char* child_env_keys[] = {"PATH", "HOME", "TMPDIR", "XDG_CACHE_HOME", "LANG", "PYTHONPATH"};
-
-std::string quote(const std::string& s)
-{
-  std::string q = "'";
-  for (char c : s)
-    q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
 std::filesystem::path resolve(const std::string& value, const std::string& source)
 {
   std::filesystem::path p(value);
@@ -213,8 +201,8 @@ NamedMesh read_xdmf(const std::filesystem::path& file, MPI_Comm comm,
 } // namespace
 
 std::optional<std::filesystem::path>
-prepare_mesh(const json& cfg, const std::string& source,
-             const std::filesystem::path& out_dir, MPI_Comm comm)
+prepare_mesh(const json& cfg, const std::string& source, const std::filesystem::path& out_dir,
+             MPI_Comm comm, const MeshConverter& convert)
 {
   const json& m = cfg["mesh"];
   const std::string type = m["type"];
@@ -226,39 +214,31 @@ prepare_mesh(const json& cfg, const std::string& source,
   int rank;
   MPI_Comm_rank(comm, &rank);
   std::string error;
+  const std::string where = printable(source, 200) + ": mesh." + key + " = " + printable(m[key]);
   if (rank == 0)
   {
     if (!std::filesystem::is_regular_file(path))
-      error = printable(source, 200) + ": mesh." + key + " = " + printable(m[key])
-              + ": no such file (" + printable(path.string(), 200) + ")";
+      error = where + ": no such file (" + printable(path.string(), 200) + ")";
     else if (type == "gmsh" or type == "msh")
     {
-      // a script of meshes/ at mesh.size, or the .msh converter, writes
-      // NAME.xdmf and its sidecar into the output folder
+      // the tool writes NAME.xdmf and its sidecar into the output folder
       target = std::filesystem::absolute(out_dir) / "mesh" / (path.stem().string() + ".xdmf");
       const auto log = std::filesystem::absolute(out_dir) / "mesh" / "generate.log";
       std::filesystem::create_directories(log.parent_path());
-      std::string cmd = "env -i";
-      for (const char* k : child_env_keys)
-        if (const char* v = std::getenv(k))
-          cmd += std::string(" ") + k + "=" + quote(v);
-      if (type == "gmsh")
-        cmd += " /usr/bin/python3 " + quote(path.string()) + " --size "
-               + json(m["size"].get<double>()).dump();
-      else
-        cmd += " /usr/bin/python3 -m piezocontact.msh " + quote(path.string());
-      cmd += " --output " + quote(target.string()) + " > " + quote(log.string()) + " 2>&1";
-      const int status = std::system(cmd.c_str());
-      if (status != 0)
+      if (!convert)
+        error = where + ": this program cannot run the mesh tools (piezo-contact and python3 -m "
+                        "piezocontact can)";
+      else if (const int status
+               = convert({type, path, target, log, m.value("size", json(0.0)).get<double>()}))
       {
         std::ifstream in(log);
         std::string line, last = "(no output)";
         while (std::getline(in, line))
           if (!line.empty())
             last = line;
-        error = printable(source, 200) + ": mesh." + key + " = " + printable(m[key])
+        error = where
                 + (type == "gmsh" ? ": mesh generation failed (exit " : ": cannot read it (exit ")
-                + std::to_string(WEXITSTATUS(status)) + "): " + printable(last, 200);
+                + std::to_string(status) + "): " + printable(last, 200);
       }
     }
   }

@@ -7,6 +7,7 @@
 #include "model.h"
 
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -14,11 +15,28 @@
 namespace piezocontact
 {
 
-/// The XDMF file to read (empty for the built-in square); for gmsh, run the
-/// geometry script on rank 0. Errors are thrown on every rank.
+/// A mesh made by a tool outside the library: a gmsh script of meshes/ run
+/// at `size` (type "gmsh"), or a .msh file converted (type "msh"). The tool
+/// writes `target` (NAME.xdmf and its NAME.boundaries.json) and its output
+/// to `log`.
+struct MeshConversion
+{
+  std::string type;
+  std::filesystem::path input, target, log;
+  double size = 0.0;
+};
+
+/// Runs the tool of a MeshConversion; returns its exit status (0: done).
+/// The front ends give it (they can run an interpreter; the library
+/// does not).
+using MeshConverter = std::function<int(const MeshConversion&)>;
+
+/// The XDMF file to read (empty for the built-in meshes); for "gmsh" and
+/// "msh", `convert` makes it on rank 0 (refused without one). Errors are
+/// thrown on every rank.
 std::optional<std::filesystem::path>
-prepare_mesh(const json& cfg, const std::string& source,
-             const std::filesystem::path& out_dir, MPI_Comm comm);
+prepare_mesh(const json& cfg, const std::string& source, const std::filesystem::path& out_dir,
+             MPI_Comm comm, const MeshConverter& convert);
 
 /// Every boundary of the config is one of the mesh's named boundaries
 /// (facet groups), and with "regions" the config names exactly the mesh's

@@ -18,7 +18,7 @@ from matplotlib.tri import Triangulation  # noqa: E402
 from piezocontact._compat import dofmap_array, functionspace  # noqa: E402
 from piezocontact.model import model_constants, pf, set_constants  # noqa: E402
 
-from . import compare  # noqa: E402
+from piezocontact import compare  # noqa: E402
 
 
 class RunState:

@@ -9,7 +9,7 @@ import sys
 import time
 from pathlib import Path
 
-from . import compare
+from piezocontact import compare
 
 def solver_commands(build_dir, np_):
     """The command line of each engine, optionally under mpirun."""

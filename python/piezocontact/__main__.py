@@ -5,14 +5,15 @@ import sys
 
 from mpi4py import MPI
 
-from . import api, cpp, model
+from . import api, cpp, mesh_tools, model
 
 
 def main(argv):
     keep = []  # the Python model objects of the run (the reference engine's)
     engines = [(name, solver, model.factory(keep=keep), api.engine_loop(name, keep))
                for name, solver in api.ENGINES.items()]
-    code = cpp.command_line("python3 -m piezocontact", argv, MPI.COMM_WORLD, engines)
+    code = cpp.command_line("python3 -m piezocontact", argv, MPI.COMM_WORLD, engines,
+                            mesh_tools.convert)
     from . import _signals
     _signals.run_ended()
     return code

@@ -6,7 +6,7 @@ from pathlib import Path
 
 from mpi4py import MPI
 
-from . import cpp, model
+from . import cpp, mesh_tools, model
 
 ENGINES = {"cpp": "cpp-jit", "reference": "reference"}
 
@@ -52,5 +52,5 @@ def solve(config, output, engine="cpp", extra_residual=None, contact_law=None, o
             observer(n, json.loads(record))
     summary = cpp.run_config(json.dumps(cfg), str(output), source, ENGINES[engine], progress,
                              None, comm, model.factory(extra_residual, contact_law, keep),
-                             loop, on_step)
+                             mesh_tools.convert, loop, on_step)
     return json.loads(summary)

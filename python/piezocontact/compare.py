@@ -14,9 +14,9 @@ import ufl
 from dolfinx import fem
 from mpi4py import MPI
 
-from piezocontact import cpp
-from piezocontact._compat import functionspace, meshtags
-from piezocontact.model import python_mesh
+from . import cpp
+from ._compat import functionspace, meshtags
+from .model import python_mesh
 
 
 def load_summary(out_dir):
