@@ -1,6 +1,6 @@
 """What ffcx compiles ahead of time for the executable, per cell type: the
-.ufl files of forms/ are one line each, calling `model` or `manufactured`
-and putting the result at top level (ffcx names the generated forms,
+.ufl files of forms/ are one line each, calling `entry` (the model, or its
+manufactured variant) and putting the result at top level (ffcx names the generated forms,
 coefficients and constants after the top-level variables that hold them,
 and fem::create_form looks them up by those names).
 
@@ -59,7 +59,10 @@ def declare(cell_name, shapes):
 def data(d, manufactured_run):
     """The Constants of every group, by group: shared, material, load."""
     shared = {**pf.shared_data(d), **(mms.shared_data() if manufactured_run else {})}
-    return {"shared": shared, "material": pf.material_data(d), "load": pf.load_data(d)}
+    material = pf.material_data(d)
+    # a material is constant in time (the core scales shared and boundary data)
+    assert not any(datum.timed for datum in material.values()), "a timed material datum"
+    return {"shared": shared, "material": material, "load": pf.load_data(d)}
 
 
 def compiled(cell_name, variant=None):

@@ -194,4 +194,5 @@ def depends_on_state(J, c):
 
 
 def jacobian_name(term):
+    assert term.name.startswith("F_"), f"a residual term's name starts with F_: {term.name}"
     return "J" + term.name[1:]

@@ -20,7 +20,7 @@ def roles(d, manufactured_run):
     out = []
     for t in terms.catalogue(d, manufactured_run):
         out.append((t, t.role, PREFIX[t.variant], t.name))
-        if terms.jacobian_name(t) in jacobians and t.role == "F":
+        if t.role == "F" and terms.jacobian_name(t) in jacobians:
             name = terms.jacobian_name(t)
             out.append((t, jacobians[name], PREFIX[None], name))
     return out

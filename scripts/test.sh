@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Set up (install what is missing, build), then run every test: the C++
-# unit and run tests (ctest) and the cross-checks (pytest).
+# Set up (install what is missing, build), then run the tests: the C++
+# unit and run tests (ctest) and the cross-checks (pytest), all but the
+# campaigns (scripts/campaigns.sh; `-m "slow or not slow"` runs both).
 # Arguments go to pytest, e.g.: bash scripts/test.sh -k agreement
 set -euo pipefail
 cd "$(dirname "$0")/.."

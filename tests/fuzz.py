@@ -249,11 +249,12 @@ def problems(code, stderr):
     return found
 
 
-def run_cases(n, seed, directory):
-    """Generate and run n cases; a report: counts and findings."""
+def run_cases(n, seed, directory, skip=0):
+    """Generate n cases of a seed's stream, run those after the first
+    `skip`; a report: counts and findings."""
     rng = random.Random(seed)
     bases = base_configs()
-    cases = [make_case(rng, bases) for _ in range(n)]
+    cases = [make_case(rng, bases) for _ in range(n)][skip:]
     argvs = []
     for i, case in enumerate(cases):
         config, out = materialise(case, directory, i)
@@ -267,7 +268,7 @@ def run_cases(n, seed, directory):
     for i, case in enumerate(cases):
         got = {e: answers[e][i] for e in answers}
         codes[tuple(got[e][0] for e in answers)] += 1
-        label = f"case {i} ({case['base']}, {case['mutation']}, args {case['args']})"
+        label = f"case {i + skip} ({case['base']}, {case['mutation']}, args {case['args']})"
         for engine, (code, stderr) in got.items():
             for p in problems(code, stderr):
                 findings.append(f"{label}: {engine}: {p}: {stderr.strip()[-300:]}")
@@ -300,7 +301,7 @@ def run_cases(n, seed, directory):
                 step_cuts += 1
             else:
                 findings.append(f"{label}: cpp exit {c}, reference exit {r}")
-    return {"cases": n, "seed": seed, "exit codes (cpp, cpp-jit, reference)": dict(
+    return {"cases": len(cases), "seed": seed, "exit codes (cpp, cpp-jit, reference)": dict(
         (",".join(map(str, k)), v) for k, v in sorted(codes.items())),
         "reference differs (solver.newton or off-scale data)": newton_only,
         "reference fails at full steps where the C++ loop cut its step": step_cuts,

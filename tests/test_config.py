@@ -1,6 +1,8 @@
 """Bad input: every engine refuses it with exit code 2 and the same message
 (one validator, in the C++ core), which names the file, the key and the
-value, before writing anything."""
+value, before writing anything. The executable runs a process per case;
+each Python engine runs every case in one process (the package as a script
+drives it, tests/fuzz_worker.py), as it would a process each."""
 
 import os
 import subprocess
@@ -9,6 +11,7 @@ import time
 import pytest
 from bad_inputs import CASES, materialise
 from conftest import ENGINES, ENV, SQUARE, command
+from fuzz import run_executable, run_worker
 
 
 def messages(case, tmp_path, np_=1):
@@ -28,14 +31,34 @@ def messages(case, tmp_path, np_=1):
     return result
 
 
+@pytest.fixture(scope="module")
+def refusals(tmp_path_factory):
+    """{case: (config, out, {engine: (exit code, stderr)})} of every case."""
+    made, argvs = {}, []
+    for i, case in enumerate(CASES):
+        config, overrides, out = materialise(case, tmp_path_factory.mktemp(f"case{i}"))
+        made[case] = (config, out)
+        argvs.append(["--config", str(config), "--output", out, "--quiet"]
+                     + [a for o in overrides for a in ("--set", o)])
+    answers = {"cpp": [run_executable(a)[:2] for a in argvs],
+               "cpp-jit": run_worker("cpp", argvs), "reference": run_worker("reference", argvs)}
+    return {case: (*made[case], {e: answers[e][i] for e in ENGINES})
+            for i, case in enumerate(CASES)}
+
+
 @pytest.mark.parametrize("case", list(CASES))
-def test_bad_input_is_refused_alike(case, tmp_path):
-    config, _, _ = materialise(case, tmp_path)
-    found = messages(case, tmp_path)
-    cpp = found["cpp"][0]
+def test_bad_input_is_refused_alike(case, refusals):
+    config, out, found = refusals[case]
+    lines = {}
+    for engine, (code, stderr) in found.items():
+        assert code == 2, (engine, stderr)
+        lines[engine] = [line for line in stderr.splitlines() if line.startswith("error: ")]
+        assert len(lines[engine]) == 1, (engine, stderr)
+    assert not os.path.exists(os.path.join(out, "summary.json"))
+    cpp = lines["cpp"][0]
     assert cpp.startswith(f"error: {config}: ")
     assert CASES[case][2] in cpp
-    assert {message for message, _ in found.values()} == {cpp}
+    assert {line for (line,) in lines.values()} == {cpp}
 
 
 @pytest.mark.parametrize("case", ["unknown key", "probe outside the domain"])

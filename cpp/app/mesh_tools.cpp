@@ -34,6 +34,8 @@ int convert_mesh(const MeshConversion& job)
     cmd += " /usr/bin/python3 -m piezocontact.msh " + quote(job.input.string());
   cmd += " --output " + quote(job.target.string()) + " > " + quote(job.log.string()) + " 2>&1";
   const int status = std::system(cmd.c_str());
-  return status == -1 ? 127 : WEXITSTATUS(status);
+  if (status == -1)
+    return 127;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 } // namespace piezocontact::app

@@ -960,6 +960,8 @@ std::vector<std::pair<std::string, const ConstantMap*>> pieces(const Model& mode
 {
   if (group == "shared")
     return {{"", &model.constants}};
+  if (group != "material" and group != "load")
+    throw std::logic_error("a Constant of an unknown group " + group);
   std::vector<std::pair<std::string, const ConstantMap*>> out;
   for (const auto& [piece, constants] : group == "material" ? model.materials : model.loads)
     out.emplace_back(piece, &constants);
@@ -995,6 +997,14 @@ void set_zero(const ConstantMap& constants)
 
 void set_constants(const json& cfg, const Model& model)
 {
+  // a Constant no declaration names would silently stay zero
+  for (const std::string group : {"shared", "material", "load"})
+    for (const auto& [piece, constants] : pieces(model, group))
+      for (const auto& [name, _] : *constants)
+        if (std::none_of(model.sources.begin(), model.sources.end(),
+                         [&](const ConstantSource& s) { return s.group == group and s.name == name; }))
+          throw std::logic_error("the model's Constant " + name + " (" + group
+                                 + ") has no source: the factory must list it in Model::sources");
   set_zero(model.constants);
   for (const auto& [_, m] : model.materials)
     set_zero(m);
@@ -1005,7 +1015,7 @@ void set_constants(const json& cfg, const Model& model)
     {
       const json* entry = entry_of(cfg, datum.group, piece);
       if (datum.group == "material" and !entry)
-        throw std::logic_error("no material for region " + piece + " (check_regions)");
+        throw std::logic_error("no material for region " + piece + " (check_names)");
       const json* value = entry && !datum.key.empty() ? at_path(*entry, datum.key) : nullptr;
       if (value)
         set_value(*constants, datum.name, value_of(*value));

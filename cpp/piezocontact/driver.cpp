@@ -174,7 +174,8 @@ json run_config(const RunRequest& request, MPI_Comm comm, const ModelFactory& ma
   check_names(checked, mesh, request.source);
   // from here on, every material is its tensors in the mesh frame
   const json cfg = resolve_materials(checked, d);
-  Model model = make_model(mesh, model_spec(cfg));
+  const ModelSpec spec = model_spec(cfg);
+  Model model = make_model(mesh, spec);
   set_constants(cfg, model);
   const auto timed = timed_constants(cfg, model);
   Problem problem(std::move(model), settings.dirichlet, request.source, timed);

@@ -224,12 +224,21 @@ prepare_mesh(const json& cfg, const std::string& source, const std::filesystem::
       // the tool writes NAME.xdmf and its sidecar into the output folder
       target = std::filesystem::absolute(out_dir) / "mesh" / (path.stem().string() + ".xdmf");
       const auto log = std::filesystem::absolute(out_dir) / "mesh" / "generate.log";
-      std::filesystem::create_directories(log.parent_path());
-      if (!convert)
-        error = where + ": this program cannot run the mesh tools (piezo-contact and python3 -m "
-                        "piezocontact can)";
-      else if (const int status
-               = convert({type, path, target, log, m.value("size", json(0.0)).get<double>()}))
+      int status = 0;
+      try // whatever the tool throws, every rank hears of it (bcast_error below)
+      {
+        std::filesystem::create_directories(log.parent_path());
+        if (!convert)
+          error = where + ": this program cannot run the mesh tools (piezo-contact and "
+                          "python3 -m piezocontact can)";
+        else
+          status = convert({type, path, target, log, m.value("size", json(0.0)).get<double>()});
+      }
+      catch (const std::exception& e)
+      {
+        error = where + ": the mesh tool failed: " + printable(std::string(e.what()), 200);
+      }
+      if (status != 0)
       {
         std::ifstream in(log);
         std::string line, last = "(no output)";
@@ -274,6 +283,11 @@ void check_boundaries(const json& cfg, const NamedMesh& mesh, const std::string&
 void check_names(const json& cfg, const NamedMesh& mesh, const std::string& source)
 {
   check_boundaries(cfg, mesh, source);
+  if (cfg.contains("manufactured") and mesh.region_of.size() != 1)
+    throw ConfigError(printable(source, 200) + ": manufactured: the mesh has "
+                      + std::to_string(mesh.region_of.size()) + " regions ("
+                      + printable(names(mesh.region_of), 200)
+                      + "); a manufactured solution has one material on one region");
   if (!cfg.contains("regions"))
     return;
   const std::string have = names(mesh.region_of);

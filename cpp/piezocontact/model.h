@@ -86,7 +86,7 @@ struct Model
   /// The unknown at t_n and the state at t_{n-1}, coefficients of the forms
   std::shared_ptr<dolfinx::fem::Function<double>> x, x_prev;
   /// The Constants shared by every term, by name (forms/piezo_forms.py
-  /// constant_shapes); the library sets "k" (and "t" if present) each step
+  /// shared_data); the library sets "k" (and "t" if present) each step
   ConstantMap constants;
   /// Per region: its material's Constants; per named boundary: its loads'
   std::map<std::string, ConstantMap> materials, loads;
@@ -96,7 +96,8 @@ struct Model
   std::vector<std::int32_t> contact_facets;
 
   /// Residual terms (summed), Jacobian terms, and the terms of the Jacobian
-  /// that depend on the state (J changes between iterates only if they do)
+  /// that depend on the state, every "J_state" term of the catalogue (J
+  /// changes between iterates of one step only if they do)
   FormList F, J, J_contact;
   /// The applied loads, linear forms (F = internal forces - L): their size
   /// scales the force balance that accepts a step. Optional.

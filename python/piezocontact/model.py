@@ -6,6 +6,7 @@ loop over the same catalogue of terms (forms/terms.py), compiled at run
 time, so that a script can change the physics with no rebuild
 (`extra_residual`, `contact_law`)."""
 
+import collections
 import json
 import os
 import sys
@@ -33,7 +34,6 @@ def _forms_dir():
 
 sys.path.insert(0, str(_forms_dir()))
 import entry_points  # noqa: E402
-import manufactured as mms  # noqa: E402
 import piezo_forms as pf  # noqa: E402
 import terms  # noqa: E402
 # the elements (those ffcx compiles), by cell
@@ -98,6 +98,9 @@ def _mark(msh, dim, entities):
     return dmesh.meshtags(msh, dim, entities, np.ones_like(entities))
 
 
+Spec = collections.namedtuple("Spec", "manufactured contact electrodes boundary_keys")
+
+
 class JitModel:
     """The forms of a run and the objects they hold: one loop over the
     catalogue of terms (forms/terms.py), each term on every piece of its
@@ -110,7 +113,10 @@ class JitModel:
       contact_law(r, c_p) -> UFL expression replacing the law p."""
 
     def __init__(self, named, spec, extra_residual=None, contact_law=None):
-        self.named, self.spec = named, spec
+        self.named = named
+        # a copy: the core's ModelSpec lives for the factory's call only
+        self.spec = Spec(spec.manufactured, list(spec.contact), list(spec.electrodes),
+                         {b: list(keys) for b, keys in spec.boundary_keys.items()})
         self.mesh = msh = python_mesh(named)
         cell_name = compat.cell_name(msh.topology)
         self.W = compat.functionspace(msh, elements(cell_name)[1])
@@ -221,6 +227,10 @@ class JitModel:
         for term in self.terms:
             if term.role != "F":
                 continue
+            if term.piece == "electrode":  # one form: one subdomain data per integral type
+                raise NotImplementedError(f"{term.name}: the whole residual has no pieces of "
+                                          "an electrode and a region (the mesh's tags mark "
+                                          "neither)")
             if term.piece == "boundary":
                 on = [c.on(ds(named.tag_of[b]), load=load) for b, load in self.loads.items()
                       if term.where is None or self._sets(b, term.where)]
