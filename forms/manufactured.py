@@ -46,8 +46,10 @@ def shared_data():
     "manufactured" block)."""
     return {
         "t": pf.Datum(()),             # time of the step (s)
-        "space_smooth": pf.Datum(()),  # 1: add the trigonometric part of U, Phi; 0: linear
-        "time_smooth": pf.Datum(()),   # 1: theta = sin(pi t/2); 0: theta = t
+        # 1: add the trigonometric part of U, Phi; 0: linear
+        "space_smooth": pf.Datum((), "manufactured.space", flag="smooth"),
+        # 1: theta = sin(pi t/2); 0: theta = t
+        "time_smooth": pf.Datum((), "manufactured.time", flag="smooth"),
     }
 
 

@@ -130,6 +130,15 @@ def spring_residual(x, y, ds, load):
     return (load["k_n"] * u_n * w_n + load["k_t"] * ufl.dot(u - u_n * n, w - w_n * n)) * ds
 
 
+def spring_force(x, ds, load, i):
+    """Component i of the bed's resultant force on the body over the facets
+    of ds: int -(k_n (u.nu) nu + k_t u_tau)_i ds."""
+    u, _ = ufl.split(x)
+    n = ufl.FacetNormal(x.ufl_domain())
+    u_n = ufl.dot(u, n)
+    return -(load["k_n"] * u_n * n[i] + load["k_t"] * (u[i] - u_n * n[i])) * ds
+
+
 def contact_term(u, w, n, ds, data, law=p):
     """j(u, w) of (2.18), normal compliance on the contact facets of ds.
     Assembled alone, minus it is the nodal force of the foundation."""
@@ -182,11 +191,12 @@ class Datum:
     `key`: the config key that sets it (from the top for the shared data,
     within a region's material or a boundary's entry for the others; None:
     the core sets it, as the time step); `timed`: the key may carry a
-    history (the core scales the value at every step). A key the config
-    leaves out leaves the Constant zero."""
+    history (the core scales the value at every step); `flag`: a switch,
+    1 where the key's value is this string, else 0. A key the config leaves
+    out leaves the Constant zero."""
 
-    def __init__(self, shape, key=None, timed=False):
-        self.shape, self.key, self.timed = shape, key, timed
+    def __init__(self, shape, key=None, timed=False, flag=None):
+        self.shape, self.key, self.timed, self.flag = shape, key, timed, flag
 
 
 def shared_data(d):

@@ -81,6 +81,10 @@ def _contact_force(i):
     return lambda c: pf.contact_force(c.x, c.m, c.data, i, c.law)
 
 
+def _spring_force(i):
+    return lambda c: pf.spring_force(c.x, c.m, c.load, i)
+
+
 def model(d):
     """The terms of the model in d dimensions, in the order they are summed."""
     def stress(c):
@@ -114,6 +118,8 @@ def model(d):
              slot="contact_nodal_area"),
         *[Term(f"contact_force_{axis}", "contact", "output", _contact_force(i),
                slot="contact_force") for i, axis in enumerate("xyz"[:d])],
+        *[Term(f"spring_force_{axis}", "boundary", "output", _spring_force(i),
+               slot="spring_force", where="spring") for i, axis in enumerate("xyz"[:d])],
         Term("electric_displacement", "region", "output", electric_displacement,
              slot="electric_displacement", points="midpoint"),
         Term("stress", "region", "output", stress, slot="stress", points="midpoint"),

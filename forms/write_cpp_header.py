@@ -44,7 +44,7 @@ def data_table(d, manufactured_run):
         for name, datum in data.items():
             shape = ", ".join(map(str, datum.shape))
             rows.append(f'{{"{group}", "{name}", {{{shape}}}, "{datum.key or ""}", '
-                        f'{"true" if datum.timed else "false"}}}')
+                        f'{"true" if datum.timed else "false"}, "{datum.flag or ""}"}}')
     return "{" + ",\n          ".join(rows) + "}"
 
 
@@ -86,14 +86,15 @@ struct Term
 }};
 
 /// A Constant of the forms: its group ("shared", "material", "load"),
-/// name, shape, the config key that sets it (empty: the core) and whether
-/// that key may carry a history
+/// name, shape, the config key that sets it (empty: the core), whether
+/// that key may carry a history, and for a switch the value that makes it 1
 struct Datum
 {{
   std::string group, name;
   std::vector<std::size_t> shape;
   std::string key;
   bool timed;
+  std::string flag;
 }};
 
 /// The terms of a run in d dimensions, in the order they are summed

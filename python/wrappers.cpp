@@ -109,7 +109,8 @@ void declare_model(py::module_& m)
       .def_rw("group", &ConstantSource::group)
       .def_rw("name", &ConstantSource::name)
       .def_rw("key", &ConstantSource::key)
-      .def_rw("timed", &ConstantSource::timed);
+      .def_rw("timed", &ConstantSource::timed)
+      .def_rw("flag", &ConstantSource::flag);
 
   class_<RegionFields>(m, "RegionFields", "The cell-wise output of one region")
       .def(py::init<>())
@@ -133,6 +134,7 @@ void declare_model(py::module_& m)
       .def_rw("J", &Model::J)
       .def_rw("J_contact", &Model::J_contact)
       .def_rw("contact_force", &Model::contact_force)
+      .def_rw("spring_force", &Model::spring_force)
       .def_rw("fields", &Model::fields)
       .def_rw("u_exact", &Model::u_exact)
       .def_rw("phi_exact", &Model::phi_exact)
@@ -173,7 +175,7 @@ void declare_problem(py::module_& m)
                              [](const Problem& p)
                              {
                                std::vector<std::shared_ptr<const dolfinx::fem::DirichletBC<double>>>
-                                   out(p.bcs.begin(), p.bcs.end());
+                                   out(p.bcs().begin(), p.bcs().end());
                                return out;
                              })
       .def_prop_ro(
@@ -181,7 +183,7 @@ void declare_problem(py::module_& m)
           [](const Problem& p)
           {
             std::vector<std::shared_ptr<const dolfinx::fem::DirichletBC<double>>> out;
-            for (const auto& bc : p.bcs)
+            for (const auto& bc : p.bcs())
               if (std::none_of(p.electrodes.begin(), p.electrodes.end(),
                                [&bc](const Electrode& e) { return e.floating and e.bc == bc; }))
                 out.push_back(bc);
@@ -198,8 +200,8 @@ void declare_problem(py::module_& m)
       .def("electrode_charges", &Problem::electrode_charges)
       .def_ro("u_dofs", &Problem::u_dofs)
       .def_ro("phi_dofs", &Problem::phi_dofs)
-      .def_ro("bc_dofs", &Problem::bc_dofs)
-      .def_ro("clamped_dofs", &Problem::clamped_dofs)
+      .def_prop_ro("bc_dofs", &Problem::bc_dofs)
+      .def_prop_ro("clamped_dofs", &Problem::clamped_dofs)
       .def("set_time", &Problem::set_time, py::arg("t"), py::arg("k"))
       .def("update_fields", &Problem::update_fields)
       .def("errors", &Problem::errors)
@@ -222,6 +224,16 @@ void declare_problem(py::module_& m)
         py::arg("problem"), py::arg("balance"), py::arg("contact_force"),
         "What Newton left on the free u dofs relative to the forces in play");
   m.attr("balance_tolerance") = balance_tolerance;
+  class_<Acceptance>(m, "Acceptance", "The rule that accepts a step (acceptance.h)")
+      .def(py::init<>())
+      .def_rw("fields", &Acceptance::fields)
+      .def_rw("charges", &Acceptance::charges)
+      .def_rw("imbalance", &Acceptance::imbalance)
+      .def("balanced", &Acceptance::balanced)
+      .def("accepted", &Acceptance::accepted, py::arg("rtol"));
+  m.def("imbalance_clause",
+        py::overload_cast<const Acceptance&, const Problem&>(&imbalance_clause), py::arg("acceptance"), py::arg("problem"),
+        "The failure message's clause on unbalanced forces ('' when they balance)");
 }
 /// Interrupted crosses to Python with (signum, steps, t), so that an engine
 /// written in Python can let it through to the driver
@@ -263,7 +275,8 @@ void declare_record(py::module_& m)
       .def_rw("newton_iterations", &SolveReport::newton_iterations)
       .def_rw("factorisations", &SolveReport::factorisations)
       .def_rw("krylov_iterations", &SolveReport::krylov_iterations)
-      .def_rw("history", &SolveReport::history);
+      .def_rw("history", &SolveReport::history)
+      .def_rw("acceptance", &SolveReport::acceptance);
   class_<Record>(m, "Record", "The outputs and summary of a run (record.h)")
       .def(constructor(
                [](Problem* problem, const RunSettings& settings, const std::string& dir,

@@ -72,7 +72,7 @@ public:
     for (const auto& [name, _] : named.tag_of)
       _m.loads[name] = zero_constants(data, "load");
     for (const auto& datum : data)
-      _m.sources.push_back({datum.group, datum.name, datum.key, datum.timed});
+      _m.sources.push_back({datum.group, datum.name, datum.key, datum.timed, datum.flag});
     for (const auto& name : spec.contact)
     {
       const auto facets = named.boundary_facets(name);
@@ -178,6 +178,8 @@ private:
       _m.electrode_charge[piece.name].push_back(form);
     else if (term.slot == "contact_force")
       _m.contact_force.push_back(form);
+    else if (term.slot == "spring_force")
+      _m.spring_force[piece.name].push_back(form);
     else if (term.slot == "contact_pressure_load")
       _m.contact_pressure_load = form;
     else if (term.slot == "contact_nodal_area")

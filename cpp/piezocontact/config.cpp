@@ -604,9 +604,9 @@ void check_electrodes(const json& cfg, const std::string& source)
                "electrode: potential 0)");
 }
 
-void check_semantics(const json& cfg, const std::string& source)
+/// The mesh keys its type needs, and none it does not use
+void check_mesh_keys(const json& mesh, const std::string& source)
 {
-  const json& mesh = cfg["mesh"];
   const std::string type = mesh["type"];
   const std::map<std::string, std::vector<std::string>> needed_by_type
       = {{"unit_square", {"n"}}, {"box", {"n", "size"}}, {"gmsh", {"geometry", "size"}},
@@ -620,7 +620,11 @@ void check_semantics(const json& cfg, const std::string& source)
     if (k != "type" and (k != "diagonal" or type != "unit_square")
         and std::find(needed.begin(), needed.end(), k) == needed.end())
       fail(source, "mesh." + k + ": not used with mesh.type \"" + type + "\"");
+}
 
+/// One material for the body, or one per region
+void check_materials(const json& cfg, const std::string& source)
+{
   if (cfg.contains("material") == cfg.contains("regions"))
     fail(source, cfg.contains("material")
                      ? "regions: give either material (one for the whole body) or regions, not both"
@@ -630,36 +634,55 @@ void check_semantics(const json& cfg, const std::string& source)
   else
     for (const auto& [name, spec] : cfg["regions"].items())
       check_material(spec, join("regions", name), source);
+}
 
-  bool held = false;
-  for (const auto& [name, bc] : cfg["boundaries"].items())
+/// The conditions one boundary combines
+void check_boundary(const json& cfg, const std::string& name, const json& bc,
+                    const std::string& source)
+{
+  const std::string where = join("boundaries", name);
+  const bool contact = bc.value("contact", false);
+  if (contact and !cfg.contains("contact"))
+    fail(source, "contact: missing: " + where + " has \"contact\": true, which needs the "
+                 "foundation's contact.c_p and contact.gap");
+  if (bc.contains("displacement") and (bc.contains("traction") or contact))
+    fail(source, where + ": a clamped boundary (displacement) cannot also "
+                         "carry traction or contact");
+  if (bc.contains("traction") and contact)
+    fail(source, where + ": traction and contact are exclusive");
+  if (bc.contains("potential") and bc.contains("surface_charge"))
+    fail(source, where + ": potential and surface_charge are exclusive");
+  for (const char* other : {"potential", "surface_charge"})
+    if (bc.contains("floating") and bc.contains(other))
+      fail(source, where + ": floating and " + other + " are exclusive (a floating "
+                           "electrode's potential is an unknown, its charge is floating.charge)");
+}
+
+/// Frictionless contact pushes only along the normal: without a clamped
+/// boundary or a bed that resists both along and across its normal, the body
+/// can slide and the Jacobian is singular
+void check_held(const json& boundaries, const std::string& source)
+{
+  for (const auto& [name, bc] : boundaries.items())
   {
-    const std::string where = join("boundaries", name);
-    // a bed that resists both along and across the normal holds it too
     const json* bed = bc.contains("spring") ? &bc["spring"] : nullptr;
-    held = held or bc.contains("displacement")
-           or (bed and (*bed)["normal"].get<double>() > 0 and (*bed)["tangential"].get<double>() > 0);
-    const bool contact = bc.value("contact", false);
-    if (contact and !cfg.contains("contact"))
-      fail(source, "contact: missing: " + where + " has \"contact\": true, which needs the "
-                   "foundation's contact.c_p and contact.gap");
-    if (bc.contains("displacement") and (bc.contains("traction") or contact))
-      fail(source, where + ": a clamped boundary (displacement) cannot also "
-                           "carry traction or contact");
-    if (bc.contains("traction") and contact)
-      fail(source, where + ": traction and contact are exclusive");
-    if (bc.contains("potential") and bc.contains("surface_charge"))
-      fail(source, where + ": potential and surface_charge are exclusive");
-    for (const char* other : {"potential", "surface_charge"})
-      if (bc.contains("floating") and bc.contains(other))
-        fail(source, where + ": floating and " + other + " are exclusive (a floating "
-                             "electrode's potential is an unknown, its charge is floating.charge)");
+    if (bc.contains("displacement")
+        or (bed and (*bed)["normal"].get<double>() > 0
+            and (*bed)["tangential"].get<double>() > 0))
+      return;
   }
-  // Frictionless contact pushes only along the normal: without a clamped
-  // boundary or a bed the body can slide, and the Jacobian is singular
-  if (!held)
-    fail(source, "boundaries: none has a displacement condition (or a spring bed with both "
-                 "stiffnesses): with frictionless contact nothing holds the body against sliding");
+  fail(source, "boundaries: none has a displacement condition (or a spring bed with both "
+               "stiffnesses): with frictionless contact nothing holds the body against sliding");
+}
+
+/// The rules across keys, once each key passed its own (Check)
+void check_semantics(const json& cfg, const std::string& source)
+{
+  check_mesh_keys(cfg["mesh"], source);
+  check_materials(cfg, source);
+  for (const auto& [name, bc] : cfg["boundaries"].items())
+    check_boundary(cfg, name, bc, source);
+  check_held(cfg["boundaries"], source);
   check_electrodes(cfg, source);
   check_manufactured(cfg, source);
 }
@@ -1017,15 +1040,12 @@ void set_constants(const json& cfg, const Model& model)
       if (datum.group == "material" and !entry)
         throw std::logic_error("no material for region " + piece + " (check_names)");
       const json* value = entry && !datum.key.empty() ? at_path(*entry, datum.key) : nullptr;
-      if (value)
+      if (value and !datum.flag.empty())
+        set_value(*constants, datum.name, *value == datum.flag ? 1.0 : 0.0);
+      else if (value)
         set_value(*constants, datum.name, value_of(*value));
     }
   set_value(model.constants, "k", cfg["time"]["T"].get<double>() / cfg["time"]["steps"].get<double>());
-  if (cfg.contains("manufactured"))
-  {
-    model.constants.at("space_smooth")->value = {cfg["manufactured"]["space"] == "smooth" ? 1.0 : 0.0};
-    model.constants.at("time_smooth")->value = {cfg["manufactured"]["time"] == "smooth" ? 1.0 : 0.0};
-  }
 }
 
 std::vector<TimedConstant> timed_constants(const json& cfg, const Model& model)

@@ -171,15 +171,32 @@ std::optional<double> ContactGeometry::max_normal_gap(const Problem& problem,
   return largest;
 }
 
-std::vector<double> contact_force(const Problem& problem)
+namespace
 {
-  std::vector<double> f(problem.model.contact_force.size());
+/// Each functional of `forms` assembled and summed over the ranks
+std::vector<double> assemble_each(const FormList& forms, MPI_Comm comm)
+{
+  std::vector<double> f(forms.size());
   for (std::size_t i = 0; i < f.size(); ++i)
   {
-    const double local = fem::assemble_scalar(*problem.model.contact_force[i]);
-    MPI_Allreduce(&local, &f[i], 1, MPI_DOUBLE, MPI_SUM, problem.comm);
+    const double local = fem::assemble_scalar(*forms[i]);
+    MPI_Allreduce(&local, &f[i], 1, MPI_DOUBLE, MPI_SUM, comm);
   }
   return f;
+}
+} // namespace
+
+std::vector<double> contact_force(const Problem& problem)
+{
+  return assemble_each(problem.model.contact_force, problem.comm);
+}
+
+std::map<std::string, std::vector<double>> spring_forces(const Problem& problem)
+{
+  std::map<std::string, std::vector<double>> out;
+  for (const auto& [name, forms] : problem.model.spring_force)
+    out[name] = assemble_each(forms, problem.comm);
+  return out;
 }
 
 double force_imbalance(const ForceBalance& balance, const std::vector<double>& contact_force,

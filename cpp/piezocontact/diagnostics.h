@@ -2,6 +2,7 @@
 // on Gamma_C (the reactions come from the residual: nonlinear_system.h).
 #pragma once
 
+#include "acceptance.h"
 #include "config.h"
 #include "problem.h"
 
@@ -42,9 +43,9 @@ private:
 /// Resultant force of the foundation on the body (N/m in 2D, N in 3D)
 std::vector<double> contact_force(const Problem& problem);
 
-/// A step is accepted only if its force_imbalance is at most this: the C++
-/// loop iterates until it is, Record refuses a step that is not
-constexpr double balance_tolerance = 1e-6;
+/// Resultant force of each spring bed on the body, per boundary (N/m in 2D,
+/// N in 3D). Collective.
+std::map<std::string, std::vector<double>> spring_forces(const Problem& problem);
 
 /// Newton's leftover on the free u dofs relative to the forces in play:
 /// |unbalanced| / (supported + |contact force| + applied_load)

@@ -95,7 +95,7 @@ FloatingPotentials::FloatingPotentials(Problem& p,
     Vec l = _l.back().vec();
     MatMult(J, ones.vec(), l);
     VecScale(l, -1.0);
-    set_owned(l, p.bc_dofs, 0.0);
+    set_owned(l, p.bc_dofs(), 0.0);
     set_owned(l, p.electrodes[e].dofs, 1.0);
     _z.push_back(make_vector(p));
   }

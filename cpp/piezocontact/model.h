@@ -62,6 +62,9 @@ struct ConstantSource
 {
   std::string group, name, key;
   bool timed = false;
+  /// A switch: 1 where the key's value is this string, else 0 (empty: the
+  /// value is the key's number or numbers)
+  std::string flag;
 };
 
 /// What the model builders need of a run's config: which pieces of the
@@ -105,6 +108,9 @@ struct Model
   /// Components of the foundation's resultant force on the body (N/m in
   /// 2D, N in 3D)
   FormList contact_force;
+  /// Per boundary with a spring bed: the components of the bed's resultant
+  /// force on the body
+  std::map<std::string, FormList> spring_force;
   /// Cell-wise electric displacement and stress, per region
   std::vector<RegionFields> fields;
 

@@ -118,7 +118,7 @@ void NonlinearSystem::F(const Vec x, Vec r)
     fem::petsc::assemble_vector(r, *term);
   // lifting is linear in the bilinear form: term by term is the sum's
   for (const auto& term : _p.model.J)
-    compat::apply_lifting(r, term, _p.bcs, x, -1.0);
+    compat::apply_lifting(r, term, _p.bcs(), x, -1.0);
   VecGhostUpdateBegin(r, ADD_VALUES, SCATTER_REVERSE);
   VecGhostUpdateEnd(r, ADD_VALUES, SCATTER_REVERSE);
   record_reactions(r);
@@ -133,7 +133,7 @@ void NonlinearSystem::F(const Vec x, Vec r)
     VecRestoreArrayRead(x, &xa);
     VecRestoreArrayRead(r, &ra);
   }
-  compat::set_bc(r, _p.bcs, x, -1.0);
+  compat::set_bc(r, _p.bcs(), x, -1.0);
 }
 
 // At a Dirichlet row the residual before set_bc is the unconstrained one
@@ -171,7 +171,7 @@ void NonlinearSystem::J(const Vec, Mat M)
   }
   {
     ScopedTimer timer(jacobian, "Jacobian");
-    assemble_into(M, _p.model.J, _p.bcs, *_p.W);
+    assemble_into(M, _p.model.J, _p.bcs(), *_p.W);
   }
   const auto x = _p.x->x()->array();
   x_assembled.assign(x.begin(), x.end());

@@ -12,32 +12,51 @@ namespace piezocontact
 {
 using namespace dolfinx;
 
+namespace
+{
+std::shared_ptr<fem::Function<double>> named_function(std::shared_ptr<compat::FunctionSpace> V,
+                                                      const std::string& name)
+{
+  auto f = std::make_shared<fem::Function<double>>(V);
+  f->name = name;
+  return f;
+}
+
+/// The contact boundary's forms on some rank: a pressure field to fill
+bool has_contact(const Model& model)
+{
+  std::int64_t facets = model.contact_facets.size();
+  MPI_Allreduce(MPI_IN_PLACE, &facets, 1, MPI_INT64_T, MPI_SUM, model.mesh.mesh->comm());
+  return model.contact_pressure_load and model.contact_nodal_area and facets > 0;
+}
+} // namespace
+
+Problem::Collapsed Problem::collapse(const compat::FunctionSpace& W, int i)
+{
+  auto [V, dofs] = compat::sub(W, i)->collapse();
+  return {std::make_shared<compat::FunctionSpace>(std::move(V)), std::move(dofs)};
+}
+
 Problem::Problem(Model model_, const std::vector<DirichletSettings>& dirichlet,
                  const std::string& source, const std::vector<TimedConstant>& timed)
-    : model(std::move(model_)), comm(model.mesh.mesh->comm()), mesh(model.mesh.mesh),
-      W(model.W), x(model.x), x_prev(model.x_prev)
+    : Problem(std::move(model_), collapse(*model_.W, 0), collapse(*model_.W, 1), dirichlet,
+              source, timed)
 {
-  // Collapsed sub-spaces and the W-dofs of each field
-  auto [Vu, map_u] = compat::sub(*W, 0)->collapse();
-  V_u = std::make_shared<compat::FunctionSpace>(std::move(Vu));
-  u_dofs = std::move(map_u);
-  auto [Vphi, map_phi] = compat::sub(*W, 1)->collapse();
-  V_phi = std::make_shared<compat::FunctionSpace>(std::move(Vphi));
-  phi_dofs = std::move(map_phi);
-  u = std::make_shared<fem::Function<double>>(V_u);
-  u->name = "u";
-  phi = std::make_shared<fem::Function<double>>(V_phi);
-  phi->name = "phi";
-  if (model.u_exact)
-  {
-    u_exact = std::make_shared<fem::Function<double>>(V_u);
-    u_exact->name = "u_exact";
-  }
-  if (model.phi_exact)
-  {
-    phi_exact = std::make_shared<fem::Function<double>>(V_phi);
-    phi_exact->name = "phi_exact";
-  }
+}
+
+// model_ is an rvalue reference: it is moved from only by the first
+// initialiser, after the collapses above were evaluated
+Problem::Problem(Model&& model_, Collapsed u_, Collapsed phi_,
+                 const std::vector<DirichletSettings>& dirichlet, const std::string& source,
+                 const std::vector<TimedConstant>& timed)
+    : model(std::move(model_)), comm(model.mesh.mesh->comm()), mesh(model.mesh.mesh),
+      W(model.W), V_u(u_.V), V_phi(phi_.V), u_dofs(std::move(u_.dofs)),
+      phi_dofs(std::move(phi_.dofs)), x(model.x), x_prev(model.x_prev),
+      u(named_function(V_u, "u")), phi(named_function(V_phi, "phi")),
+      u_exact(model.u_exact ? named_function(V_u, "u_exact") : nullptr),
+      phi_exact(model.phi_exact ? named_function(V_phi, "phi_exact") : nullptr),
+      contact_pressure(has_contact(model) ? named_function(V_phi, "contact_pressure") : nullptr)
+{
   for (const auto& c : timed)
   {
     if (c.history.kind == History::Kind::constant)
@@ -48,14 +67,6 @@ Problem::Problem(Model model_, const std::vector<DirichletSettings>& dirichlet,
   }
   create_bcs(dirichlet, source);
   check_electrodes_apart(source);
-  // the pressure field, where there is a contact boundary
-  std::int64_t contact_facets = model.contact_facets.size();
-  MPI_Allreduce(MPI_IN_PLACE, &contact_facets, 1, MPI_INT64_T, MPI_SUM, comm);
-  if (model.contact_pressure_load and model.contact_nodal_area and contact_facets > 0)
-  {
-    contact_pressure = std::make_shared<fem::Function<double>>(V_phi);
-    contact_pressure->name = "contact_pressure";
-  }
   set_time(0.0, model.constants.at("k")->value.at(0));
 }
 
@@ -94,7 +105,7 @@ std::map<std::string, std::vector<double>>
 Problem::reactions(std::span<const double> r) const
 {
   std::map<std::string, std::vector<double>> out;
-  for (const auto& [name, comps] : clamped_dofs)
+  for (const auto& [name, comps] : _clamped_dofs)
   {
     std::vector<double> local(comps.size(), 0.0);
     for (std::size_t i = 0; i < comps.size(); ++i)
@@ -120,7 +131,7 @@ std::map<std::string, std::vector<double>> Problem::reactions() const
 
 ForceBalance Problem::force_balance(std::span<const double> r) const
 {
-  std::vector<std::int32_t> constrained = bc_dofs;
+  std::vector<std::int32_t> constrained = _bc_dofs;
   std::sort(constrained.begin(), constrained.end());
   const int dim = V_u->dofmap()->index_map_bs();
   std::vector<double> local(dim + 1, 0.0), global(dim + 1); // resultant, then supported
@@ -149,7 +160,7 @@ double Problem::load_sum() const
 {
   const int bs = W->dofmap()->index_map_bs();
   const auto L = assemble(model.L);
-  std::vector<std::int32_t> constrained = bc_dofs;
+  std::vector<std::int32_t> constrained = _bc_dofs;
   std::sort(constrained.begin(), constrained.end());
   double local = 0.0, global = 0.0;
   const auto a = L.array();
@@ -231,7 +242,7 @@ void Problem::create_bcs(const std::vector<DirichletSettings>& dirichlet,
       scale_in_time(g, bc.displacement_history);
       // one condition per fixed component, its values taken from g on V_u
       // (W->sub({0, i}) is not W.sub(0).sub(i) in 0.5.2: chain single levels)
-      auto& comp = clamped_dofs[bc.boundary];
+      auto& comp = _clamped_dofs[bc.boundary];
       comp.assign(dim, {});
       for (int i = 0; i < dim; ++i)
       {
@@ -240,8 +251,8 @@ void Problem::create_bcs(const std::vector<DirichletSettings>& dirichlet,
         auto Wi = compat::sub(*compat::sub(*W, 0), i);
         auto dofs = compat::locate_dofs_topological(*Wi, *compat::sub(*V_u, i), fdim, facets);
         comp[i] = dofs[0];
-        bc_dofs.insert(bc_dofs.end(), dofs[0].begin(), dofs[0].end());
-        bcs.push_back(std::make_shared<fem::DirichletBC<double>>(g, std::move(dofs), Wi));
+        _bc_dofs.insert(_bc_dofs.end(), dofs[0].begin(), dofs[0].end());
+        _bcs.push_back(std::make_shared<fem::DirichletBC<double>>(g, std::move(dofs), Wi));
       }
     }
     if (bc.potential or bc.potential_exact)
@@ -258,12 +269,12 @@ void Problem::create_bcs(const std::vector<DirichletSettings>& dirichlet,
                           + ".potential: \"exact\" needs a manufactured solution");
       scale_in_time(g, bc.potential_history);
       auto dofs = compat::locate_dofs_topological(*W_phi, *V_phi, fdim, facets);
-      bc_dofs.insert(bc_dofs.end(), dofs[0].begin(), dofs[0].end());
+      _bc_dofs.insert(_bc_dofs.end(), dofs[0].begin(), dofs[0].end());
       Electrode e;
       e.name = bc.boundary;
       e.dofs = dofs[0];
-      bcs.push_back(std::make_shared<fem::DirichletBC<double>>(g, std::move(dofs), W_phi));
-      e.bc = bcs.back();
+      _bcs.push_back(std::make_shared<fem::DirichletBC<double>>(g, std::move(dofs), W_phi));
+      e.bc = _bcs.back();
       electrodes.push_back(std::move(e));
     }
     if (bc.floating)
@@ -272,7 +283,7 @@ void Problem::create_bcs(const std::vector<DirichletSettings>& dirichlet,
       // solver sets (floating.h)
       auto g = std::make_shared<fem::Function<double>>(V_phi);
       auto dofs = compat::locate_dofs_topological(*W_phi, *V_phi, fdim, facets);
-      bc_dofs.insert(bc_dofs.end(), dofs[0].begin(), dofs[0].end());
+      _bc_dofs.insert(_bc_dofs.end(), dofs[0].begin(), dofs[0].end());
       Electrode e;
       e.name = bc.boundary;
       e.dofs = dofs[0];
@@ -280,8 +291,8 @@ void Problem::create_bcs(const std::vector<DirichletSettings>& dirichlet,
       e.potential = g;
       e.charge = bc.charge;
       e.history = bc.charge_history;
-      bcs.push_back(std::make_shared<fem::DirichletBC<double>>(g, std::move(dofs), W_phi));
-      e.bc = bcs.back();
+      _bcs.push_back(std::make_shared<fem::DirichletBC<double>>(g, std::move(dofs), W_phi));
+      e.bc = _bcs.back();
       electrodes.push_back(std::move(e));
     }
   }

@@ -126,27 +126,51 @@ public:
   /// Spatial dimension
   int dim() const { return mesh->geometry().dim(); }
 
+  /// The forms; their Constants change with set_time (and the loop's k)
   Model model;
-  MPI_Comm comm;
-  std::shared_ptr<compat::Mesh> mesh;
-  std::shared_ptr<const compat::FunctionSpace> W;
-  std::shared_ptr<compat::FunctionSpace> V_u, V_phi;
-  std::vector<std::int32_t> u_dofs, phi_dofs; ///< W-dofs of each field
-  std::shared_ptr<dolfinx::fem::Function<double>> x, x_prev, u, phi;
+  // What the model's spaces make, fixed at construction
+  const MPI_Comm comm;
+  const std::shared_ptr<compat::Mesh> mesh;
+  const std::shared_ptr<const compat::FunctionSpace> W;
+  const std::shared_ptr<compat::FunctionSpace> V_u, V_phi;
+  const std::vector<std::int32_t> u_dofs, phi_dofs; ///< W-dofs of each field
+  /// The state (x, x_prev on W) and its collapsed fields (update_fields)
+  const std::shared_ptr<dolfinx::fem::Function<double>> x, x_prev, u, phi;
   /// Exact fields at the current time (null if the model has none)
-  std::shared_ptr<dolfinx::fem::Function<double>> u_exact, phi_exact;
+  const std::shared_ptr<dolfinx::fem::Function<double>> u_exact, phi_exact;
 
-  std::vector<std::shared_ptr<const dolfinx::fem::DirichletBC<double>>> bcs;
-  std::vector<std::int32_t> bc_dofs; ///< W-dofs of every Dirichlet condition
+  /// The Dirichlet conditions, electrodes' included
+  const std::vector<std::shared_ptr<const dolfinx::fem::DirichletBC<double>>>& bcs() const
+  {
+    return _bcs;
+  }
+  /// W-dofs of every Dirichlet condition
+  const std::vector<std::int32_t>& bc_dofs() const { return _bc_dofs; }
   /// clamped boundary -> W-dofs of each of its u components
-  std::map<std::string, std::vector<std::vector<std::int32_t>>> clamped_dofs;
-  /// Every boundary with a potential condition, by name
+  const std::map<std::string, std::vector<std::vector<std::int32_t>>>& clamped_dofs() const
+  {
+    return _clamped_dofs;
+  }
+  /// Every boundary with a potential condition, by name (the solver holds
+  /// the floating ones' potentials: hold)
   std::vector<Electrode> electrodes;
   /// The lumped contact pressure (update_contact_pressure; null without a
   /// contact boundary's forms)
-  std::shared_ptr<dolfinx::fem::Function<double>> contact_pressure;
+  const std::shared_ptr<dolfinx::fem::Function<double>> contact_pressure;
 
 private:
+  /// A sub-space of W collapsed, and the W-dofs of its dofs
+  struct Collapsed
+  {
+    std::shared_ptr<compat::FunctionSpace> V;
+    std::vector<std::int32_t> dofs;
+  };
+  static Collapsed collapse(const compat::FunctionSpace& W, int i);
+  Problem(Model&& model, Collapsed u, Collapsed phi, const std::vector<DirichletSettings>& dirichlet,
+          const std::string& source, const std::vector<TimedConstant>& timed);
+  std::vector<std::shared_ptr<const dolfinx::fem::DirichletBC<double>>> _bcs;
+  std::vector<std::int32_t> _bc_dofs;
+  std::map<std::string, std::vector<std::vector<std::int32_t>>> _clamped_dofs;
   double _t = 0.0;
   mutable double _applied_load = -1.0; ///< at the current t; < 0: not yet
   /// A datum scaled in time: where its values live, their value at

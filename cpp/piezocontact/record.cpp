@@ -71,7 +71,7 @@ void print_progress(const std::string& label, int n, const json& step)
 
 Record::Record(Problem& problem, const RunSettings& settings, std::filesystem::path dir,
                json summary, bool resume, bool progress, StepObserver observer)
-    : _problem(problem), _dir(std::move(dir)), _progress(progress),
+    : _problem(problem), _rtol(settings.newton.rtol), _dir(std::move(dir)), _progress(progress),
       _observer(std::move(observer)), _label(summary.value("solver", "cpp")),
       _probes(problem, settings.probes, summary.value("config_file", "config")),
       _contact(problem), _state_file(problem)
@@ -211,6 +211,8 @@ json Record::accept(StepState state, const SolveReport& report, const StateViews
          {"phi", values[i][d]}});
   }
   step["contact_force"] = contact_force(problem);
+  if (!problem.model.spring_force.empty())
+    step["spring_force"] = spring_forces(problem);
   const auto gap = _contact.max_normal_gap(problem, problem.model.constants.at("g")->value[0]);
   step["max_penetration"] = gap ? json(*gap) : json(nullptr);
   const double in_contact = problem.update_contact_pressure();
@@ -235,7 +237,7 @@ json Record::accept(StepState state, const SolveReport& report, const StateViews
   const ForceBalance balance = problem.force_balance(r);
   // the size of what the supports carry: a reaction's round-off is of it
   step["support_force"] = balance.supported;
-  check_balance(step, balance);
+  check_acceptance(step, report.acceptance, balance);
   step["krylov_iterations"] = report.krylov_iterations;
   step["k"] = report.k;
   if (!problem.model.squared_errors.empty())
@@ -289,23 +291,15 @@ json Record::accept(StepState state, const SolveReport& report, const StateViews
 // matrix dwarfs the rest (a contact penalty 1e19 times the elastic
 // stiffness), it can pass while forces in newtons are left over. A step is
 // accepted only if the loads, the contact force and the reactions balance.
-void Record::check_balance(const json& step, const ForceBalance& balance)
+void Record::check_acceptance(const json& step, Acceptance acceptance,
+                              const ForceBalance& balance)
 {
-  const double ratio = force_imbalance(_problem, balance,
-                                       step["contact_force"].get<std::vector<double>>());
-  if (ratio <= balance_tolerance)
-    return;
-  char c_p[64] = "";
-  if (_problem.contact_pressure) // a contact boundary: the usual culprit
-    std::snprintf(c_p, sizeof(c_p), " (contact.c_p = %g)",
-                  _problem.model.constants.at("c_p")->value[0]);
-  char what[400];
-  std::snprintf(what, sizeof(what),
-                "forces do not balance at t = %g although Newton's test passed: what is "
-                "left on the free dofs is %.3g of the contact and support forces (at most "
-                "%g accepted); the system is too ill-conditioned for double precision%s",
-                step["t"].get<double>(), ratio, balance_tolerance, c_p);
-  fail(what);
+  acceptance.imbalance = force_imbalance(_problem, balance,
+                                         step["contact_force"].get<std::vector<double>>());
+  const std::string broken = broken_rule(acceptance, _rtol, _problem);
+  if (!broken.empty())
+    fail("the step at t = " + json(step["t"]).dump()
+         + " was accepted by its loop but breaks the acceptance rule: " + broken);
 }
 
 // The current is the backward-Euler rate of the charge, from the last

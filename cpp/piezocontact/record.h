@@ -6,6 +6,7 @@
 // through it: one summary schema.
 #pragma once
 
+#include "acceptance.h"
 #include "checkpoint.h"
 #include "config.h"
 #include "diagnostics.h"
@@ -62,6 +63,9 @@ struct SolveReport
   /// may be none on a rank), for reactions, balance and charges; if absent
   /// (on every rank alike), assembled for the purpose
   std::optional<std::span<const double>> residual;
+  /// The acceptance rule as the loop judged the state (acceptance.h);
+  /// Record judges the balance again from `residual`
+  Acceptance acceptance;
 };
 
 /// x_n, x_{n-1} and x_J (the iterate the Jacobian in use was assembled at)
@@ -102,14 +106,16 @@ public:
 private:
   void write_summary();
   [[noreturn]] void fail_on_output(const OutputError& e);
-  /// fail() unless the step's forces balance to balance_tolerance
-  void check_balance(const json& step, const ForceBalance& balance);
+  /// fail() unless the step meets the acceptance rule, its balance judged
+  /// from the accepted state's residual
+  void check_acceptance(const json& step, Acceptance acceptance, const ForceBalance& balance);
   /// Potential, charge (int D.nu and by reaction, from the unconstrained
   /// residual r: owned entries) and current of each electrode
   json electrodes_json(std::span<const double> r, double k) const;
   StepState write_checkpoint(StepState state, const StateViews& states);
 
   Problem& _problem;
+  const double _rtol; ///< Newton's, for the acceptance rule
   std::filesystem::path _dir;
   bool _progress;
   StepObserver _observer;

@@ -113,7 +113,7 @@ public:
            json summary, bool resume, bool progress, const StepObserver& observer)
       : _problem(problem), _settings(settings), _comm(problem.comm),
         _record(problem, settings, out_dir, std::move(summary), resume, progress, observer),
-        _monitor({{"u", problem.u_dofs}, {"phi", problem.phi_dofs}}, problem.bc_dofs,
+        _monitor({{"u", problem.u_dofs}, {"phi", problem.phi_dofs}}, problem.bc_dofs(),
                  problem.W->dofmap()->index_map->size_local()
                      * problem.W->dofmap()->index_map_bs(),
                  settings.newton.rtol, settings.newton.atol, problem.comm),
@@ -208,34 +208,31 @@ private:
     _newton.error_on_nonconvergence = false;
   }
 
-  /// The acceptance test of an iterate (fieldwise.h), with the floating
-  /// electrodes' charge equations and the balance of forces
+  /// The acceptance rule (acceptance.h) at an iterate
   std::pair<double, bool> converged(const Vec r)
   {
     PetscInt n;
     VecGetLocalSize(r, &n);
     const PetscScalar* ra;
     VecGetArrayRead(r, &ra);
-    const std::span<const double> residual(ra, n);
-    bool ok = _monitor.check(_problem.x->x()->array().subspan(0, n), residual);
+    _acceptance.fields = _monitor.check(_problem.x->x()->array().subspan(0, n),
+                                        std::span<const double>(ra, n));
+    VecRestoreArrayRead(r, &ra);
     // an update that solved a locally linear problem exactly needs no
     // second one to bound its error (fieldwise.h)
-    if (!ok and _monitor.residuals_converged())
-      ok = _system->exact_update();
-    if (!_system->floating.empty()) // the floating electrodes' charge equations
+    if (!_acceptance.fields and _monitor.residuals_converged())
+      _acceptance.fields = _system->exact_update();
+    if (!_system->floating.empty())
     {
       const double relative = _system->floating.relative_residual();
       _monitor.history.back()["charge"] = {_system->floating.residual_norm(), relative, relative};
-      ok = ok and relative <= _settings.newton.rtol;
+      _acceptance.charges = relative;
     }
-    // The scaled test alone can pass with newtons left over where one
-    // block dwarfs the rest (a huge contact penalty): balance them too
-    _imbalance = force_imbalance(_problem, _system->balance, contact_force(_problem));
-    VecRestoreArrayRead(r, &ra);
+    _acceptance.imbalance = force_imbalance(_problem, _system->balance, contact_force(_problem));
     PetscReal norm;
     VecNorm(r, NORM_2, &norm);
     _signal = agreed_interrupt(_problem.comm);
-    return {norm, (ok and _imbalance <= balance_tolerance) or _signal != 0};
+    return {norm, _acceptance.accepted(_settings.newton.rtol) or _signal != 0};
   }
 
   /// The Jacobian made before the loop (and its factorisation, or the
@@ -281,7 +278,7 @@ private:
     for (auto d : _problem.u_dofs)
       _xa[d] = _xp[d] + k / _steps.k_last * (_xp[d] - _x_prev2[d]);
     _problem.hold_floating_potentials(_xp); // phi^0 = phi_{n-1} there too
-    for (const auto& bc : _problem.bcs)
+    for (const auto& bc : _problem.bcs())
       compat::set_bc_values(*bc, _xa);
     _problem.x->x()->scatter_fwd();
   }
@@ -289,6 +286,7 @@ private:
   Attempt solve(double t, double k)
   {
     _monitor.history.clear();
+    _acceptance = {};
     const int f0 = _system->factorisation.count;
     common::Timer newton_timer("piezocontact: Newton solve");
     std::pair<int, bool> outcome;
@@ -321,7 +319,8 @@ private:
                       _system->factorisation.count - f0,
                       _newton.krylov_iterations(),
                       _monitor.history,
-                      std::span<const double>(_system->unconstrained)};
+                      std::span<const double>(_system->unconstrained),
+                      _acceptance};
     return attempt;
   }
 
@@ -373,13 +372,7 @@ private:
                        + sci(last.at("u").update) + ", phi = " + sci(last.at("phi").update);
     if (last.contains("charge"))
       what += ", floating charges = " + sci(last.at("charge").relative);
-    if (_imbalance > balance_tolerance)
-      what += ", forces unbalanced by " + sci(_imbalance)
-              + " of the contact and support forces (too ill-conditioned for double precision?"
-              + (_problem.contact_pressure
-                     ? " contact.c_p = " + sci(_problem.model.constants.at("c_p")->value[0])
-                     : std::string())
-              + ")";
+    return what + imbalance_clause(_acceptance, _problem);
     return what;
   }
 
@@ -421,7 +414,7 @@ private:
   std::vector<double> _x_prev2; ///< u_{n-2}, for the predictor
   const bool _progress;
   int _signal = 0;
-  double _imbalance = 0.0; ///< force_imbalance at the last iterate
+  Acceptance _acceptance; ///< the rule at the last iterate
   double _callbacks_before = 0.0, _newton_s = 0.0;
   int _newton_its = 0;
 };

@@ -75,6 +75,7 @@ def sources(dim, manufactured=False):
         for name, datum in data.items():
             s = cpp.ConstantSource()
             s.group, s.name, s.key, s.timed = group, name, datum.key or "", datum.timed
+            s.flag = datum.flag or ""
             out.append(s)
     return out
 
@@ -283,6 +284,10 @@ class JitModel:
         for b, _, f in self._output("electrode_charge"):
             charges.setdefault(b, []).append(c(f))
         m.electrode_charge = charges
+        springs = {}
+        for b, _, f in self._output("spring_force"):
+            springs.setdefault(b, []).append(c(f))
+        m.spring_force = springs
         return m
 
 
