@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Set up (install what is missing, build), then run the tests: the C++
 # unit and run tests (ctest) and the cross-checks (pytest), all but the
-# campaigns (scripts/campaigns.sh; `-m "slow or not slow"` runs both).
+# campaigns and the demos (scripts/campaigns.sh, scripts/demos.sh;
+# `-m "slow or not slow"` runs the campaigns too).
 # Arguments go to pytest, e.g.: bash scripts/test.sh -k agreement
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Every kind of bad input the engines must refuse, with (part of) the
-message all three give. Used by tests/test_config.py; run it to regenerate
+message all three give. Used by tests/robustness/test_config.py; run it to regenerate
 the table of messages in docs/errors.md from real runs of the executable:
 
     /usr/bin/python3 tests/bad_inputs.py --write docs/errors.md
@@ -214,7 +214,7 @@ def main():
             "`python3 -m piezocontact --engine reference`) refuse each of these before "
             "computing anything, with exit code 2 and the same one-line message naming "
             "the file, the key and the value: one validator, in the C++ core, checks the "
-            "input for all three. Checked by `tests/test_config.py`; this table is "
+            "input for all three. Checked by `tests/robustness/test_config.py`; this table is "
             "regenerated from real runs by "
             "`/usr/bin/python3 tests/bad_inputs.py --write docs/errors.md`.\n",
             "In the C++ loop (`piezo-contact`, `python3 -m piezocontact`) a Newton failure "
@@ -232,7 +232,7 @@ def main():
             "step) at t = 0.0625: solver.linear = \"iterative\" needs a fraction of the "
             "memory` (a MUMPS workspace under-estimate names `mat_mumps_icntl_14`); a "
             "failed solve before the first step (the first Jacobian's) ends the run the "
-            "same way. Checked by `tests/test_linear_solver.py`.\n",
+            "same way. Checked by `tests/engines/test_linear_solver.py`.\n",
             "A write error (a full disk) stops the run with exit code 4 and one line, "
             "`error: cannot write FILE: No space left on device`; summary.json says "
             "\"failed\" with that error when there is room for it, and every earlier step "
@@ -244,7 +244,7 @@ def main():
             "takes), another engine's run (`cannot resume: solver = \"cpp-jit\", this is "
             "the \"cpp\" solver`) and `--config` beside it; the reference engine resumes "
             "no run (`cannot resume: the reference engine runs whole`). Checked by "
-            "`tests/test_interrupts.py`.\n",
+            "`tests/robustness/test_interrupts.py`.\n",
             "| bad input | message (`piezo-contact`, config `demos/...` or a scratch file) |",
             "|---|---|"]
     exe = Path(os.environ.get("PIEZO_BUILD", ROOT / "build")) / "piezo-contact"

@@ -46,7 +46,7 @@ def main():
 
 def check_manufactured(s):
     """Errors relative to the exact solution's size (U0, PHI0): round-off
-    is ~1e-15; see tests/test_manufactured.py."""
+    is ~1e-15; see tests/verification/test_manufactured.py."""
     sys.path.insert(0, str(ROOT / "forms"))
     from manufactured import PHI0, U0
     failures = []

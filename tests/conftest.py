@@ -8,11 +8,15 @@ import json
 import os
 import subprocess
 import sys
+import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
+# The support code here (fuzz, bad_inputs...) for the tests in the folders
+# below, one folder per kind: verification/, engines/, robustness/, demos/
+sys.path.insert(0, str(ROOT / "tests"))
 sys.path.insert(0, str(ROOT / "demos"))
 BUILD = Path(os.environ.get("PIEZO_BUILD", ROOT / "build"))
 # This tree's build of the Python package, not an installed one
@@ -46,6 +50,21 @@ def run_solver(solver, out, overrides=(), config=SQUARE, np_=1, check=True, resu
     summary_file = Path(out) / "summary.json"
     summary = json.loads(summary_file.read_text()) if summary_file.exists() else None
     return summary, proc
+
+
+def resume(solver, out, np_=1, check=True, overrides=()):
+    """Continue the run in `out` (--resume): (summary or None, CompletedProcess)."""
+    return run_solver(solver, out, overrides, np_=np_, check=check, resume=True)
+
+
+def xdmf_times(path):
+    """Time values per function listed in an XDMF file (it must parse)."""
+    root = ET.parse(path).getroot()
+    out = {}
+    for grid in root.iter("Grid"):
+        if grid.get("CollectionType") == "Temporal":
+            out[grid.get("Name")] = [float(t.get("Value")) for t in grid.iter("Time")]
+    return out
 
 
 @pytest.fixture(scope="session")

@@ -219,10 +219,9 @@ def run_executable(argv):
 def run_worker(engine, argvs):
     """Run the cases in one Python process (the package in-process, as a
     script drives it). A crash or hang names the case it happened in."""
-    with tempfile.TemporaryFile("w+") as progress:
-        proc = subprocess.run(["/usr/bin/python3", str(WORKER), engine],
-                              input=json.dumps(argvs), capture_output=True, text=True, env=ENV,
-                              timeout=CASE_TIMEOUT * 4 + 10 * len(argvs))
+    proc = subprocess.run(["/usr/bin/python3", str(WORKER), engine],
+                          input=json.dumps(argvs), capture_output=True, text=True, env=ENV,
+                          timeout=CASE_TIMEOUT * 4 + 10 * len(argvs))
     results = [json.loads(line) for line in proc.stdout.splitlines() if line.startswith("{")]
     if proc.returncode != 0 or len(results) != len(argvs):
         raise AssertionError(f"{engine} worker died (exit {proc.returncode}) in case "

@@ -10,7 +10,6 @@ import json
 import numpy as np
 import pytest
 from conftest import ROOT
-from dolfinx import fem
 from dolfinx.fem import petsc as fem_petsc
 from mpi4py import MPI
 from petsc4py import PETSc

@@ -6,7 +6,6 @@ every probe value, force, reaction, penetration and electrode quantity of
 every step. Both loops stop Newton on a bound of the error of the answer
 (docs/verification.md), so this holds by construction, not by luck."""
 
-from pathlib import Path
 
 import pytest
 from conftest import ROOT, run_solver

@@ -3,7 +3,6 @@ change the answer: it is detected exactly (the contact part of J compared
 value by value), not guessed. Run where the contact set changes during the
 run (the contactor variant: the contact zone grows as the body relaxes)."""
 
-import numpy as np
 import pytest
 from conftest import ROOT, run_solver
 from piezocontact import compare

@@ -2,7 +2,6 @@
 
 import math
 
-import pytest
 import ufl
 from conftest import SQUARE
 import piezocontact

@@ -15,7 +15,7 @@ from pathlib import Path
 import h5py
 import numpy as np
 import pytest
-from conftest import ENV, ROOT, SQUARE, command, run_solver
+from conftest import ENV, ROOT, SQUARE, command, resume, run_solver
 
 VARIANT = ROOT / "demos" / "contactor_in_contact.json"
 # Example 1 at n = 32: a few ms per step, so that kills land in every phase
@@ -45,10 +45,6 @@ def wait_for_steps(proc, out, steps, timeout=300):
 def kill9(proc):
     proc.send_signal(signal.SIGKILL)
     proc.wait()
-
-
-def resume(solver, out, np_=1, check=True, overrides=()):
-    return run_solver(solver, out, overrides, np_=np_, check=check, resume=True)
 
 
 def indexed_steps(out):

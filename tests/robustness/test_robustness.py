@@ -2,11 +2,9 @@
 every step computed before (interruptions: test_interrupts.py)."""
 
 import json
-import xml.etree.ElementTree as ET
 
-import numpy as np
 import pytest
-from conftest import ROOT, run_solver
+from conftest import ROOT, run_solver, xdmf_times
 
 SMALL = ["output.nodal=none"]
 
@@ -21,16 +19,6 @@ def variant(tmp_path_factory):
     path = tmp_path_factory.mktemp("variant") / "contactor_0.2.json"
     path.write_text(json.dumps(cfg))
     return path
-
-
-def xdmf_times(path):
-    """Time values per function listed in an XDMF file (it must parse)."""
-    root = ET.parse(path).getroot()
-    out = {}
-    for grid in root.iter("Grid"):
-        if grid.get("CollectionType") == "Temporal":
-            out[grid.get("Name")] = [float(t.get("Value")) for t in grid.iter("Time")]
-    return out
 
 
 @pytest.mark.parametrize("solver", ["cpp", "cpp-jit"])

@@ -9,7 +9,7 @@ import sys
 
 import numpy as np
 import pytest
-from conftest import ROOT, run_solver
+from conftest import ROOT, resume, run_solver, xdmf_times
 
 sys.path.insert(0, str(ROOT / "forms"))
 from manufactured import PHI0, U0  # noqa: E402
@@ -294,8 +294,6 @@ def test_3d_regions_under_mpi_resume_and_xdmf(tmp_path):
     on resume equals the straight run (1e-8: the checkpoint holds u_x, u_y,
     u_z, phi per vertex); the XDMF steps hold u, phi, D, the contact
     pressure and the six stress components."""
-    from test_interrupts import resume
-    from test_robustness import xdmf_times
     base = ["time.steps=4", "time.T=0.2"]
     serial = run_solver("cpp", tmp_path / "serial", base, config=ROOT / "demos" / "unimorph.json")[0]
     mpi = run_solver("cpp", tmp_path / "mpi", base + QUIET, config=ROOT / "demos" / "unimorph.json",

@@ -8,7 +8,7 @@ import math
 
 import numpy as np
 import pytest
-from conftest import ROOT, run_solver
+from conftest import ROOT, resume, run_solver
 from test_devices import BILAYER, QUIET, SIGMA0, relative, step_values, uniform_block, write
 
 CONTACTOR = ROOT / "demos" / "contactor.json"
@@ -220,11 +220,28 @@ def test_contact_pressure_of_a_uniform_compression(tmp_path):
     assert np.all(nodal[~bottom, 2] == 0.0)
 
 
+def test_one_bordered_update_solves_the_charge_equations(tmp_path):
+    """The floating electrodes' algebra alone (floating.h), with no second
+    engine: the charge equations are linear in (x, V) (the electric rows
+    are; the contact term tests only w), so the first bordered Newton update
+    of every step solves them to round-off, whatever the contact does to u
+    (the first step of this bilayer closes contact: u is not yet solved
+    there). A fault in the border c_e, the unit responses z_f or the signs of
+    the Schur complement leaves them unsolved."""
+    config = floating_bilayer(tmp_path)
+    summary = run_solver("cpp", tmp_path / "cpp", ["time.steps=4"] + QUIET, config=config)[0]
+    for step in summary["steps"]:
+        predictor, first = step["residual_history"][:2]
+        assert predictor["charge"] > 1e-6  # something to solve: the charge is ramped
+        assert first["charge"] <= 100 * np.finfo(float).eps, step["residual_history"]
+    # once contact is settled, the steps are linear: one update solves all
+    assert all(s["newton_iterations"] == 1 for s in summary["steps"][1:])
+
+
 def test_a_resumed_run_continues_the_floating_electrode(tmp_path):
     """The floating bilayer run to T/2 and resumed to T equals the straight
     run (1e-8): the floating potential restarts from the checkpoint's, the
     current from the last recorded charge."""
-    from test_interrupts import resume
     config = floating_bilayer(tmp_path)
     straight = run_solver("cpp", tmp_path / "straight", ["time.steps=4"] + QUIET, config=config)[0]
     run_solver("cpp", tmp_path / "short", ["time.steps=2", "time.T=0.5"] + QUIET, config=config)

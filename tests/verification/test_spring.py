@@ -12,7 +12,8 @@ piezoelectric tensor has a D_y row only: phi = 0 and D_y is uniform. Then
 the bed's share fixed by its balance with the uniform stress, the body's by
 backward Euler on the uniform state,
     (B + A / k) eps_n = s + A / k eps_{n-1},  s = (0, -p, 0 | tau) in Voigt,
-and the electrodes' charges are +/- D_y = e_y . eps_n (area 1). P1 holds
+and the electrodes' charges are +/- D_y = e_y . eps_n (area 1); the bed's
+resultant force on the body is (-tau, p) (area 1). P1 holds
 the linear fields exactly: every probe value to round-off."""
 
 import json
@@ -89,6 +90,9 @@ def test_block_on_a_spring_bed(tmp_path, d, engine):
             # the potential this strain would drive across the block, were
             # it not grounded on both faces
             assert abs(probe["phi"]) <= 1e-10 * abs(e[1] @ eps) / beta[1, 1]
+        # the bed carries the top's load: (-tau, p) on the body, area 1
+        assert np.allclose(step["spring_force"]["bottom"], [-TAU, P] + [0.0] * (d - 2),
+                           rtol=0, atol=1e-10 * P)
         D_y = e[1] @ eps
         for name, sign in (("top", 1.0), ("bottom", -1.0)):
             electrode = step["electrodes"][name]
