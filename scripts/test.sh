@@ -2,7 +2,7 @@
 # Set up (install what is missing, build), then run the tests: the C++
 # unit and run tests (ctest) and the cross-checks (pytest), all but the
 # campaigns and the demos (scripts/campaigns.sh, scripts/demos.sh;
-# `-m "slow or not slow"` runs the campaigns too).
+# `-m "not demo"` runs the campaigns too, `-m "slow or not slow"` all).
 # Arguments go to pytest, e.g.: bash scripts/test.sh -k agreement
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -37,7 +37,7 @@ std::string broken_rule(const Acceptance& acceptance, double rtol, const Problem
 {
   std::string what;
   if (!acceptance.fields)
-    what += ", a field failed its test";
+    what += ", its loop reported no field test passed";
   if (!acceptance.charges_hold(rtol))
     what += ", floating charges = " + sci(*acceptance.charges);
   what += imbalance_clause(acceptance, problem);

@@ -8,8 +8,9 @@
 //     field test alone can pass with newtons left over where one block
 //     dwarfs the rest (a huge contact penalty).
 // The C++ loop iterates until the rule holds; Record judges every step by it
-// again, from the residual at the accepted state, whichever engine solved
-// it, and refuses one that breaks it.
+// again, whichever engine solved it, and refuses one that breaks it: the
+// balance recomputed from the residual at the accepted state, the fields and
+// charges as the loop reported them (a loop that reports none breaks it).
 #pragma once
 
 #include <optional>

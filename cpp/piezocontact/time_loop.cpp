@@ -373,7 +373,6 @@ private:
     if (last.contains("charge"))
       what += ", floating charges = " + sci(last.at("charge").relative);
     return what + imbalance_clause(_acceptance, _problem);
-    return what;
   }
 
   StepState state_now() const

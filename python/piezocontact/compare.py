@@ -60,6 +60,8 @@ def step_quantities(summary):
            "contact_force": [s["contact_force"] for s in steps]}
     if steps[0].get("max_penetration") is not None:  # null without a contact boundary
         out["max_penetration"] = [[s["max_penetration"]] for s in steps]
+    for name in steps[0].get("spring_force", {}):
+        out[f"spring_force.{name}"] = [s["spring_force"][name] for s in steps]
     for name in steps[0].get("reactions", {}):
         out[f"reactions.{name}"] = [s["reactions"][name] for s in steps]
     for name, e in steps[0].get("electrodes", {}).items():
@@ -72,7 +74,7 @@ def step_quantities(summary):
 def agreement(run, ref):
     """{quantity: (largest |a - b| / run-wide size, largest value-by-value
     relative difference)} over every step of two runs of one config. A force
-    (contact force, a reaction) is a sum of nodal forces: its size is at
+    (contact force, a reaction, a bed's force) is a sum of nodal forces: its size is at
     least that of the forces the supports carry (`support_force`, the sum
     of |nodal reaction|), of which its round-off is (a clamp that holds a
     body loaded only electrically has a net reaction of 1e-15 N/m)."""
@@ -91,7 +93,7 @@ def agreement(run, ref):
     for key, b in qb.items():
         a = qa[key]
         size = float(np.max(np.abs(b), initial=0.0))
-        if key == "contact_force" or key.startswith("reactions."):
+        if key == "contact_force" or key.startswith(("reactions.", "spring_force.")):
             size = max(size, supported)
         if key in kind:
             size = kind_size[kind[key]]
