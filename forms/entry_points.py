@@ -23,35 +23,61 @@ except ImportError:  # basix 0.5 (dolfinx 0.5): UFL 2022's own elements
     basix_ufl = None
 
 
-def elements(cell_name):
-    """(coordinate element, mixed element of x = (u, phi)) on a cell: P1
-    vectors (the geometry, and u) and P1^d x P1. The one definition of the
-    elements, for ffcx here and for the package's JIT (model.py)."""
+def lagrange(cell_name, degree, shape=()):
+    """The Lagrange element of a degree on a cell (scalar, or of a shape)."""
     if basix_ufl:
-        vector = basix_ufl.element("Lagrange", cell_name, 1, shape=(DIMENSION[cell_name],))
-        scalar = basix_ufl.element("Lagrange", cell_name, 1)
-        return vector, basix_ufl.mixed_element([vector, scalar])
+        return basix_ufl.element("Lagrange", cell_name, degree, shape=shape)
     cell = getattr(ufl, cell_name)  # its geometric dimension is its own
-    vector = ufl.VectorElement("Lagrange", cell, 1)
-    return vector, ufl.MixedElement([vector, ufl.FiniteElement("Lagrange", cell, 1)])
+    if shape:
+        return ufl.VectorElement("Lagrange", cell, degree)
+    return ufl.FiniteElement("Lagrange", cell, degree)
 
 
-# Reference points of the expressions: the cell midpoint (the cell-wise, DG0,
-# output) and the P1 nodes (the vertices: the exact fields)
-POINTS = {"midpoint": {"triangle": [[1 / 3, 1 / 3]], "tetrahedron": [[0.25, 0.25, 0.25]]},
-          "nodes": {"triangle": [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]],
-                    "tetrahedron": [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0],
-                                    [0.0, 0.0, 1.0]]}}
+def elements(cell_name, degree_u=1, degree_phi=1):
+    """(coordinate element, mixed element of x = (u, phi), element of the
+    contact pressure) on a cell: the geometry is P1 (straight-sided cells),
+    x is P{degree_u}^d x P{degree_phi}, the lumped contact pressure P1 (at
+    degree 2 the vertex functions of a triangle integrate to zero: no
+    lumping). The one definition of the elements, for ffcx here and for the
+    package's JIT (model.py)."""
+    vector = (DIMENSION[cell_name],)
+    u, phi = lagrange(cell_name, degree_u, vector), lagrange(cell_name, degree_phi)
+    mixed = basix_ufl.mixed_element([u, phi]) if basix_ufl else ufl.MixedElement([u, phi])
+    return lagrange(cell_name, 1, vector), mixed, lagrange(cell_name, 1)
 
 
-def declare(cell_name, shapes):
-    """Mesh, W, x, x_prev and {name: Constant}."""
-    coordinate, mixed = elements(cell_name)
+# The degrees the executable carries (compiled ahead of time: one .ufl file
+# per cell and pair), as (degree_u, degree_phi)
+COMPILED_DEGREES = ((1, 1), (2, 2))
+
+
+def node_points(cell_name, degree):
+    """The reference nodes of the Lagrange element of a degree, in basix's
+    order (the interpolation points of the space)."""
+    import basix
+    cell = getattr(basix.CellType, cell_name)
+    element = basix.create_element(basix.ElementFamily.P, cell, degree,
+                                   basix.LagrangeVariant.gll_warped)
+    return element.points.tolist()
+
+
+def points(kind, cell_name, degrees):
+    """Reference points of an expression: the cell midpoint (the cell-wise,
+    DG0, output), or the nodes of u's or phi's space (the exact fields)."""
+    if kind == "midpoint":
+        return [[1 / (DIMENSION[cell_name] + 1)] * DIMENSION[cell_name]]
+    return node_points(cell_name, degrees[{"u_nodes": 0, "phi_nodes": 1}[kind]])
+
+
+def declare(cell_name, shapes, degrees=(1, 1)):
+    """Mesh, W, x, x_prev, the pressure's space and {name: Constant}."""
+    coordinate, mixed, pressure = elements(cell_name, *degrees)
     mesh = ufl.Mesh(coordinate)
     W = ufl.FunctionSpace(mesh, mixed)
     objects = {"mesh": mesh, "W": W,
                "x": ufl.Coefficient(W),       # (u_n, phi_n), the unknown of the step
-               "x_prev": ufl.Coefficient(W)}  # (u_{n-1}, phi_{n-1})
+               "x_prev": ufl.Coefficient(W),  # (u_{n-1}, phi_{n-1})
+               "P": ufl.FunctionSpace(mesh, pressure)}
     constants = {name: ufl.Constant(mesh, shape=shape) for name, shape in shapes.items()}
     return objects, constants
 
@@ -65,7 +91,7 @@ def data(d, manufactured_run):
     return {"shared": shared, "material": material, "load": pf.load_data(d)}
 
 
-def compiled(cell_name, variant=None):
+def compiled(cell_name, variant=None, degrees=(1, 1)):
     """What ffcx compiles for a variant (None: the model): {name: form} and
     {name: (expression, reference points)}, every term of the catalogue the
     variant defines, on its piece (dx(1), ds(1): the core marks the piece
@@ -74,10 +100,11 @@ def compiled(cell_name, variant=None):
     d = DIMENSION[cell_name]
     groups = data(d, variant == "manufactured")
     objects, constants = declare(cell_name, {name: datum.shape for group in groups.values()
-                                             for name, datum in group.items()})
+                                             for name, datum in group.items()}, degrees)
     mesh, W = objects["mesh"], objects["W"]
     by_group = {g: {name: constants[name] for name in group} for g, group in groups.items()}
-    c = terms.Context(objects["x"], objects["x_prev"], ufl.TestFunction(W), by_group["shared"])
+    c = terms.Context(objects["x"], objects["x_prev"], ufl.TestFunction(W), by_group["shared"],
+                      q=ufl.TestFunction(objects["P"]))
     dx_trial = ufl.TrialFunction(W)
     dx, ds = ufl.Measure("dx", domain=mesh), ufl.Measure("ds", domain=mesh)
     measure = {"region": dx(1), "boundary": ds(1), "contact": ds(1), "electrode": ds(1),
@@ -88,7 +115,7 @@ def compiled(cell_name, variant=None):
             continue  # compiled with the model
         ct = c.on(measure[t.piece], by_group["material"], by_group["load"])
         if t.expression:
-            expressions[t.name] = (t.build(ct), POINTS[t.points][cell_name])
+            expressions[t.name] = (t.build(ct), points(t.points, cell_name, degrees))
             continue
         forms[t.name] = t.build(ct)
         if t.role == "F" and variant is None and (J := terms.jacobian(t, ct, dx_trial)):
@@ -97,9 +124,9 @@ def compiled(cell_name, variant=None):
     return objects, constants, forms, expressions, jacobians
 
 
-def entry(cell_name, variant=None):
+def entry(cell_name, variant=None, degrees=(1, 1)):
     """The namespace of a .ufl file: every object by name, and the lists of
     what ffcx compiles."""
-    objects, constants, forms, expressions, _ = compiled(cell_name, variant)
+    objects, constants, forms, expressions, _ = compiled(cell_name, variant, degrees)
     return {**objects, **constants, **forms, **{n: e for n, (e, _) in expressions.items()},
             "forms": list(forms.values()), "expressions": list(expressions.values())}

@@ -26,11 +26,21 @@ also be passed in (`law=`).
 
 import ufl
 
-# One quadrature rule for every integral of the contact pressure. UFL would
-# pick degree 2 for p (w.n) but 1 for p n_i, and with the kink of max(r, 0)
-# inside a facet the two rules differ: the reported contact force would not
-# be the force the residual applies.
-CONTACT_QUADRATURE_DEGREE = 2
+
+def degrees(x):
+    """(degree of u, degree of phi) of the mixed space of x."""
+    def value(attribute):  # a method in UFL 2022, a property in basix.ufl
+        return attribute() if callable(attribute) else attribute
+    return tuple(value(e.degree) for e in value(x.ufl_element().sub_elements))
+
+
+def contact_quadrature_degree(x):
+    """One quadrature rule for every integral of the contact pressure: twice
+    u's degree (p (w.n) with p linear in u). UFL would pick 2 for p (w.n) but
+    1 for p n_i at degree 1, and with the kink of max(r, 0) inside a facet the
+    two rules differ: the reported contact force would not be the force the
+    residual applies."""
+    return 2 * degrees(x)[0]
 
 
 def voigt_size(d):
@@ -142,14 +152,15 @@ def spring_force(x, ds, load, i):
 def contact_term(u, w, n, ds, data, law=p):
     """j(u, w) of (2.18), normal compliance on the contact facets of ds.
     Assembled alone, minus it is the nodal force of the foundation."""
-    return contact_pressure(u, n, data, law) * ufl.dot(w, n) * ds(degree=CONTACT_QUADRATURE_DEGREE)
+    return contact_pressure(u, n, data, law) * ufl.dot(w, n) * ds
 
 
 def contact_residual(x, y, ds, data, law=p):
     """The contact term of the residual (ds: the contact facets)."""
     u, _ = ufl.split(x)
     w, _ = ufl.split(y)
-    return contact_term(u, w, ufl.FacetNormal(x.ufl_domain()), ds, data, law)
+    dsq = ds(degree=contact_quadrature_degree(x))
+    return contact_term(u, w, ufl.FacetNormal(x.ufl_domain()), dsq, data, law)
 
 
 def jacobian(F, x, dx_trial):
@@ -162,7 +173,7 @@ def contact_force(x, ds, data, i, law=p):
     -int_{Gamma_C} p(u.nu - g) nu ds (N/m per unit thickness in 2D, N in 3D)."""
     u, _ = ufl.split(x)
     n = ufl.FacetNormal(x.ufl_domain())
-    return -contact_pressure(u, n, data, law) * n[i] * ds(degree=CONTACT_QUADRATURE_DEGREE)
+    return -contact_pressure(u, n, data, law) * n[i] * ds(degree=contact_quadrature_degree(x))
 
 
 def electrode_charge(x, ds, mat):
@@ -174,16 +185,15 @@ def electrode_charge(x, ds, mat):
     return ufl.dot(electric_displacement(u, phi, mat), n) * ds
 
 
-def contact_pressure_moments(x, y, ds, data, law=p):
-    """int p(u.nu - g) psi ds and int psi ds over the contact facets (ds),
-    psi the potential's test function (P1: one per vertex). At a vertex, the
-    first over the second is the lumped L2 projection of the contact
-    pressure; the second alone is the vertex's share of Gamma_C."""
+def contact_pressure_moments(x, q, ds, data, law=p):
+    """int p(u.nu - g) q ds and int q ds over the contact facets (ds), q a
+    P1 test function (one per vertex). At a vertex, the first over the
+    second is the lumped L2 projection of the contact pressure; the second
+    alone is the vertex's share of Gamma_C."""
     u, _ = ufl.split(x)
-    _, psi = ufl.split(y)
     n = ufl.FacetNormal(x.ufl_domain())
-    return (contact_pressure(u, n, data, law) * psi * ds(degree=CONTACT_QUADRATURE_DEGREE),
-            psi * ds)
+    return (contact_pressure(u, n, data, law) * q * ds(degree=contact_quadrature_degree(x)),
+            q * ds)
 
 
 class Datum:

@@ -44,14 +44,17 @@ class Term:
     """One entry of the catalogue. `where`: on boundary pieces, the config
     key a boundary must set for the term to be instantiated on it (None:
     every named boundary). `points`: where an expression is evaluated
-    ("midpoint" of the cell, or "nodes", the P1 nodes). `variant`: the
+    ("midpoint" of the cell, or "u_nodes", "phi_nodes": the nodes of
+    that field's space). `space`: the test space of a linear form, x's
+    ("W") or the contact pressure's ("P", tested with c.q). `variant`: the
     variant that defines it (None: the model's)."""
 
     def __init__(self, name, piece, role, build, slot=None, where=None, points=None,
-                 variant=None):
-        assert piece in PIECES and role in ("F", "L", "output")
+                 variant=None, space="W"):
+        assert piece in PIECES and role in ("F", "L", "output") and space in ("W", "P")
         self.name, self.piece, self.role, self.build = name, piece, role, build
         self.slot, self.where, self.points, self.variant = slot, where, points, variant
+        self.space = space
 
     @property
     def expression(self):
@@ -61,13 +64,13 @@ class Term:
 class Context:
     """What a term is built from (see the module's docstring)."""
 
-    def __init__(self, x, x_prev, y, data, m=None, mat=None, load=None, law=pf.p):
+    def __init__(self, x, x_prev, y, data, m=None, mat=None, load=None, law=pf.p, q=None):
         self.x, self.x_prev, self.y, self.data = x, x_prev, y, data
-        self.m, self.mat, self.load, self.law = m, mat, load, law
+        self.m, self.mat, self.load, self.law, self.q = m, mat, load, law, q
 
     def on(self, m, mat=None, load=None):
         """The same context on another piece."""
-        return Context(self.x, self.x_prev, self.y, self.data, m, mat, load, self.law)
+        return Context(self.x, self.x_prev, self.y, self.data, m, mat, load, self.law, self.q)
 
     @property
     def fields(self):
@@ -111,11 +114,11 @@ def model(d):
         Term("electrode_charge", "electrode", "output",
              lambda c: pf.electrode_charge(c.x, c.m, c.mat), slot="electrode_charge"),
         Term("contact_pressure_load", "contact", "output",
-             lambda c: pf.contact_pressure_moments(c.x, c.y, c.m, c.data, c.law)[0],
-             slot="contact_pressure_load"),
+             lambda c: pf.contact_pressure_moments(c.x, c.q, c.m, c.data, c.law)[0],
+             slot="contact_pressure_load", space="P"),
         Term("contact_nodal_area", "contact", "output",
-             lambda c: pf.contact_pressure_moments(c.x, c.y, c.m, c.data, c.law)[1],
-             slot="contact_nodal_area"),
+             lambda c: pf.contact_pressure_moments(c.x, c.q, c.m, c.data, c.law)[1],
+             slot="contact_nodal_area", space="P"),
         *[Term(f"contact_force_{axis}", "contact", "output", _contact_force(i),
                slot="contact_force") for i, axis in enumerate("xyz"[:d])],
         *[Term(f"spring_force_{axis}", "boundary", "output", _spring_force(i),
@@ -159,14 +162,14 @@ def manufactured(d):
     for t in model(d):
         if t.name in replaced:
             t = Term(t.name, t.piece, t.role, replaced[t.name], t.slot, t.where, t.points,
-                     variant)
+                     variant, t.space)
             t.jacobian_of = base_builder(d, t.name)
         terms += [t] + added_after.get(t.name, [])
     terms += [Term(name, "mesh", "output", _squared_error(name), slot="squared_errors",
                    variant=variant) for name in ("u_L2", "u_H1", "phi_L2", "phi_H1")]
-    terms += [Term("u_exact", "mesh", "output", _exact(0), slot="u_exact", points="nodes",
+    terms += [Term("u_exact", "mesh", "output", _exact(0), slot="u_exact", points="u_nodes",
                    variant=variant),
-              Term("phi_exact", "mesh", "output", _exact(1), slot="phi_exact", points="nodes",
+              Term("phi_exact", "mesh", "output", _exact(1), slot="phi_exact", points="phi_nodes",
                    variant=variant)]
     return terms
 

@@ -1,8 +1,11 @@
 """Write the executable's view of the catalogue (terms.py): per dimension and
 variant, every term with its piece, role and ffcx kernel, and every Constant
 with its shape and config key, so that the C++ side never restates them.
+The executable carries the degrees of entry_points.COMPILED_DEGREES, each
+pair (degree_u, degree_phi) in .ufl files of its own (suffix `suffix`).
 Run by CMake next to ffcx: write_cpp_header.py OUT.h"""
 
+import os
 import sys
 
 import entry_points as ep
@@ -13,31 +16,44 @@ CELL = {2: "triangle", 3: "tetrahedron"}
 PREFIX = {None: "piezo_contact_{d}d", "manufactured": "manufactured_{d}d"}
 
 
-def roles(d, manufactured_run):
+def suffix(degrees):
+    """The .ufl files' suffix of a pair of degrees: none at (1, 1) (the
+    paper's P1), _p2 at (2, 2), _u2phi1 at (2, 1)"""
+    ku, kphi = degrees
+    return "" if degrees == (1, 1) else f"_p{ku}" if ku == kphi else f"_u{ku}phi{kphi}"
+
+
+def files(degrees):
+    """The ffcx files of a pair of degrees, by variant."""
+    return {v: p + suffix(degrees) for v, p in PREFIX.items()}
+
+
+def roles(d, manufactured_run, degrees):
     """(term, role, ffcx file, form name) in catalogue order, each Jacobian
     after the residual term it is the derivative of."""
-    jacobians = ep.compiled(CELL[d])[4]
+    jacobians = ep.compiled(CELL[d], degrees=degrees)[4]
+    prefix = files(degrees)
     out = []
     for t in terms.catalogue(d, manufactured_run):
-        out.append((t, t.role, PREFIX[t.variant], t.name))
+        out.append((t, t.role, prefix[t.variant], t.name))
         if t.role == "F" and terms.jacobian_name(t) in jacobians:
             name = terms.jacobian_name(t)
-            out.append((t, jacobians[name], PREFIX[None], name))
+            out.append((t, jacobians[name], prefix[None], name))
     return out
 
 
-def term_table(d, manufactured_run):
+def term_table(d, manufactured_run, degrees):
     rows = []
-    for t, role, prefix, name in roles(d, manufactured_run):
+    for t, role, prefix, name in roles(d, manufactured_run, degrees):
         p = prefix.format(d=d)
         kernel = (f"nullptr, expression_{p}_{name}" if t.expression
                   else f"form_{p}_{name}, nullptr")
         rows.append(f'{{"{name}", Piece::{t.piece}, Role::{role}, "{t.slot or ""}", '
-                    f'"{t.where or ""}", {kernel}}}')
+                    f'"{t.where or ""}", Space::{t.space}, {kernel}}}')
     return "{" + ",\n          ".join(rows) + "}"
 
 
-def data_table(d, manufactured_run):
+def data_table(d, manufactured_run, degrees=None):
     groups = ep.data(d, manufactured_run)
     rows = []
     for group, data in groups.items():
@@ -48,21 +64,50 @@ def data_table(d, manufactured_run):
     return "{" + ",\n          ".join(rows) + "}"
 
 
-def by_case(table):
+def by_case(table, per_degree=True):
     cases = []
-    for d in (2, 3):
-        for m in (False, True):
-            cases.append(f"  if (d == {d} and manufactured == {'true' if m else 'false'})\n"
-                         f"    return {table(d, m)};")
+    for degrees in ep.COMPILED_DEGREES if per_degree else [None]:
+        when = f" and degrees == Degrees{{{degrees[0]}, {degrees[1]}}}" if degrees else ""
+        for d in (2, 3):
+            for m in (False, True):
+                cases.append(f"  if (d == {d} and manufactured == {'true' if m else 'false'}"
+                             f"{when})\n    return {table(d, m, degrees)};")
     return "\n".join(cases)
 
 
-includes = "\n".join(f'#include "{p.format(d=d)}.h"' for p in PREFIX.values() for d in (2, 3))
+def space_factories():
+    """The ufcx function spaces of x and of the contact pressure (dolfinx
+    0.5 builds its spaces from them), by dimension and degrees."""
+    cases = []
+    for degrees in ep.COMPILED_DEGREES:
+        for d in (2, 3):
+            p = files(degrees)[None].format(d=d)
+            cases.append(f"  if (d == {d} and degrees == Degrees{{{degrees[0]}, {degrees[1]}}})\n"
+                         f"    return {{PIEZO_UFCX_SPACE(functionspace_form_{p}_F_region), "
+                         f"PIEZO_UFCX_SPACE(functionspace_form_{p}_contact_pressure_load)}};")
+    return "\n".join(cases)
+
+
+def carried():
+    return ", ".join(f"Degrees{{{ku}, {kphi}}}" for ku, kphi in ep.COMPILED_DEGREES)
+
+
+here = os.path.dirname(os.path.abspath(__file__))
+for degrees in ep.COMPILED_DEGREES:
+    for p in files(degrees).values():
+        for d in (2, 3):
+            assert os.path.exists(os.path.join(here, p.format(d=d) + ".ufl")), \
+                f"entry_points.COMPILED_DEGREES has {degrees}: {p.format(d=d)}.ufl is missing"
+includes = "\n".join(f'#include "{p.format(d=d)}.h"' for degrees in ep.COMPILED_DEGREES
+                     for p in files(degrees).values() for d in (2, 3))
 header = f"""// Generated from forms/terms.py by forms/write_cpp_header.py: do not edit.
 #pragma once
 {includes}
+#include <array>
 #include <cstddef>
+#include <piezocontact/compat.h>
 #include <stdexcept>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -72,6 +117,8 @@ namespace piezocontact::forms
 enum class Piece {{ region, boundary, contact, electrode, exterior, mesh }};
 /// Residual, applied loads, Jacobian (constant in a run, or not), output
 enum class Role {{ F, L, J, J_state, output }};
+/// The space of a form's arguments: x's, or the contact pressure's (P1)
+enum class Space {{ W, P }};
 
 /// A term of the catalogue and its kernel (a form, or an expression)
 struct Term
@@ -81,6 +128,7 @@ struct Term
   Role role;
   std::string slot;  ///< output: the Model member it fills
   std::string where; ///< boundary: the config key a boundary needs (empty: all)
+  Space space;
   ufcx_form* form;
   ufcx_expression* expression;
 }};
@@ -97,17 +145,34 @@ struct Datum
   std::string flag;
 }};
 
-/// The terms of a run in d dimensions, in the order they are summed
-inline std::vector<Term> catalogue(int d, bool manufactured)
+/// The degrees of the fields (u, phi)
+using Degrees = std::array<int, 2>;
+
+/// The degrees compiled ahead of time
+inline std::vector<Degrees> carried() {{ return {{{carried()}}}; }}
+
+/// The terms of a run in d dimensions at some degrees, in the order they
+/// are summed
+inline std::vector<Term> catalogue(int d, bool manufactured, Degrees degrees)
 {{
 {by_case(term_table)}
-  throw std::invalid_argument("no kernels for d = " + std::to_string(d));
+  throw std::invalid_argument("no kernels for d = " + std::to_string(d) + " at degrees "
+                              + std::to_string(degrees[0]) + ", " + std::to_string(degrees[1]));
 }}
 
-/// The Constants of the forms
+/// The function spaces of x and of the contact pressure (dolfinx 0.5 makes
+/// its spaces from ffcx's; null on dolfinx 0.9, which makes them from basix)
+inline std::pair<compat::UfcxSpaceFactory, compat::UfcxSpaceFactory>
+space_factories(int d, Degrees degrees)
+{{
+{space_factories()}
+  throw std::invalid_argument("no spaces for d = " + std::to_string(d));
+}}
+
+/// The Constants of the forms (the same at every degree)
 inline std::vector<Datum> data(int d, bool manufactured)
 {{
-{by_case(data_table)}
+{by_case(data_table, per_degree=False)}
   throw std::invalid_argument("no kernels for d = " + std::to_string(d));
 }}
 }} // namespace piezocontact::forms

@@ -101,7 +101,8 @@ void declare_model(py::module_& m)
       .def_rw("manufactured", &ModelSpec::manufactured)
       .def_rw("contact", &ModelSpec::contact)
       .def_rw("electrodes", &ModelSpec::electrodes)
-      .def_rw("boundary_keys", &ModelSpec::boundary_keys);
+      .def_rw("boundary_keys", &ModelSpec::boundary_keys)
+      .def_rw("degrees", &ModelSpec::degrees);
 
   class_<ConstantSource>(m, "ConstantSource",
                          "Where a Constant's value comes from (model.h)")
@@ -123,6 +124,7 @@ void declare_model(py::module_& m)
       .def(py::init<>())
       .def_rw("mesh", &Model::mesh)
       .def_rw("W", &Model::W)
+      .def_rw("P", &Model::P)
       .def_rw("x", &Model::x)
       .def_rw("x_prev", &Model::x_prev)
       .def_rw("constants", &Model::constants)

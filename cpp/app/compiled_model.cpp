@@ -2,6 +2,7 @@
 #include "piezo_forms_table.h" // generated from forms/terms.py: the kernels ffcx compiled
 
 #include <dolfinx/fem/utils.h>
+#include <algorithm>
 #include <functional>
 #include <numeric>
 
@@ -59,9 +60,12 @@ public:
   Builder(const NamedMesh& named, const ModelSpec& spec) : _named(named), _spec(spec)
   {
     const int d = named.mesh->geometry().dim();
+    check_carried(spec.degrees);
     const auto data = forms::data(d, spec.manufactured);
+    const auto [mixed, pressure] = forms::space_factories(d, spec.degrees);
     _m.mesh = named;
-    _m.W = compat::mixed_p1_space(named.mesh, space_factory(d));
+    _m.W = compat::mixed_space(named.mesh, mixed, spec.degrees);
+    _m.P = compat::pressure_space(named.mesh, pressure);
     _m.x = std::make_shared<fem::Function<double>>(_m.W);
     _m.x->name = "x";
     _m.x_prev = std::make_shared<fem::Function<double>>(_m.W);
@@ -84,17 +88,23 @@ public:
   Model build()
   {
     const int d = _named.mesh->geometry().dim();
-    for (const auto& term : forms::catalogue(d, _spec.manufactured))
+    for (const auto& term : forms::catalogue(d, _spec.manufactured, _spec.degrees))
       for (const auto& piece : instances(term))
         place(term, piece);
     return std::move(_m);
   }
 
 private:
-  static compat::UfcxSpaceFactory space_factory(int d)
+  static void check_carried(forms::Degrees degrees)
   {
-    return d == 2 ? PIEZO_UFCX_SPACE(functionspace_form_piezo_contact_2d_F_region)
-                  : PIEZO_UFCX_SPACE(functionspace_form_piezo_contact_3d_F_region);
+    const auto carried = forms::carried();
+    if (std::find(carried.begin(), carried.end(), degrees) != carried.end())
+      return;
+    std::string list;
+    for (const auto& [ku, kphi] : carried)
+      list += (list.empty() ? "" : ", ") + std::to_string(ku) + "/" + std::to_string(kphi);
+    throw DegreesNotCarried("the executable carries the degrees (u/phi) " + list
+                            + "; `python3 -m piezocontact` compiles any degree");
   }
 
   bool sets(const std::string& boundary, const std::string& key) const
@@ -148,7 +158,8 @@ private:
     if (term.expression)
       return place_expression(term, piece);
     const int rank = term.form->rank;
-    std::vector<std::shared_ptr<const compat::FunctionSpace>> spaces(rank, _m.W);
+    std::vector<std::shared_ptr<const compat::FunctionSpace>> spaces(
+        rank, term.space == forms::Space::P ? _m.P : _m.W);
     const auto form = compat::create_form(
         *term.form, spaces, _coefficients, piece.constants,
         cells ? fem::IntegralType::cell : fem::IntegralType::exterior_facet,

@@ -2,32 +2,134 @@
 #include "output.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace piezocontact
 {
 using namespace dolfinx;
 namespace
 {
+/// Where a node (a dof of each component) of a Lagrange space sits, in
+/// terms no partition changes: the input (file) indices of the vertices of
+/// the smallest mesh entity that holds it, ascending, and its barycentric
+/// coordinates on them, rounded to 1e-9. A vertex node is its vertex alone.
+using NodeKey = std::array<std::int64_t, 8>; // 4 vertices, 4 coordinates (-1: none)
 
-/// Input (file) index of the vertex of each local dof (owned and ghost) of a
-/// P1 space: P1 dofs and P1 geometry nodes follow the same cell-local order
-std::vector<std::int64_t> input_vertex_of_dofs(const compat::FunctionSpace& V)
+/// The key of a point x in a cell of vertices `v` (coordinates, input indices)
+NodeKey node_key(std::span<const double> x, const std::vector<std::array<double, 3>>& v,
+                 const std::vector<std::int64_t>& input)
+{
+  // barycentric coordinates: solve sum_i l_i (v_i - v_0) = x - v_0 (Cramer)
+  const int n = v.size() - 1;
+  double a[3][3] = {}, b[3] = {};
+  for (int r = 0; r < n; ++r)
+  {
+    for (int c = 0; c < n; ++c)
+      a[r][c] = v[c + 1][r] - v[0][r];
+    b[r] = x[r] - v[0][r];
+  }
+  auto det = [n](const double m[3][3])
+  {
+    return n == 2 ? m[0][0] * m[1][1] - m[0][1] * m[1][0]
+                  : m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+                        - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+                        + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+  };
+  const double D = det(a);
+  std::vector<double> l(n + 1, 1.0);
+  for (int c = 0; c < n; ++c)
+  {
+    double m[3][3];
+    std::copy(&a[0][0], &a[0][0] + 9, &m[0][0]);
+    for (int r = 0; r < n; ++r)
+      m[r][c] = b[r];
+    l[c + 1] = det(m) / D;
+    l[0] -= l[c + 1];
+  }
+  std::vector<std::pair<std::int64_t, std::int64_t>> on; // (input vertex, rounded l)
+  for (int i = 0; i <= n; ++i)
+    if (const auto rounded = std::llround(l[i] * 1e9); rounded > 0)
+      on.push_back({input[i], rounded});
+  std::sort(on.begin(), on.end());
+  NodeKey key;
+  key.fill(-1);
+  for (std::size_t i = 0; i < on.size(); ++i)
+    key[i] = on[i].first, key[4 + i] = on.size() > 1 ? on[i].second : -1;
+  return key;
+}
+
+/// The key of each local node (owned and ghost) of a Lagrange space
+std::vector<NodeKey> node_keys(const compat::FunctionSpace& V)
 {
   const auto& mesh = *V.mesh();
   const auto& imap = *V.dofmap()->index_map;
-  std::vector<std::int64_t> vertex(imap.size_local() + imap.num_ghosts(), -1);
+  std::vector<NodeKey> keys(imap.size_local() + imap.num_ghosts());
+  const auto coordinates = V.tabulate_dof_coordinates(false);
   const auto& input = mesh.geometry().input_global_indices();
+  const auto x = mesh.geometry().x();
   const int tdim = compat::topology(mesh).dim();
   const auto cells = compat::topology(mesh).index_map(tdim);
   const std::int32_t num_cells = cells->size_local() + cells->num_ghosts();
+  std::vector<std::array<double, 3>> vertices(tdim + 1);
+  std::vector<std::int64_t> vertex_input(tdim + 1);
   for (std::int32_t c = 0; c < num_cells; ++c)
   {
-    const auto nodes = compat::cell_nodes(mesh, c);
-    const auto dofs = V.dofmap()->cell_dofs(c);
-    for (std::size_t j = 0; j < dofs.size(); ++j)
-      vertex[dofs[j]] = input[nodes[j]];
+    const auto nodes = compat::cell_nodes(mesh, c); // P1 geometry: the vertices
+    for (int i = 0; i <= tdim; ++i)
+    {
+      std::copy_n(x.data() + 3 * nodes[i], 3, vertices[i].begin());
+      vertex_input[i] = input[nodes[i]];
+    }
+    for (const std::int32_t dof : V.dofmap()->cell_dofs(c))
+      keys[dof] = node_key(std::span(coordinates.data() + 3 * dof, 3), vertices, vertex_input);
   }
-  return vertex;
+  return keys;
+}
+
+/// The table row of each key: a vertex's input index (the rows of a P1 run),
+/// then the other nodes of every rank in ascending key order. Collective.
+std::vector<std::int64_t> rows_of(const std::vector<NodeKey>& keys, std::int64_t vertex_rows,
+                                  MPI_Comm comm)
+{
+  std::vector<std::int64_t> rows(keys.size(), -1), others;
+  for (std::size_t i = 0; i < keys.size(); ++i)
+  {
+    if (keys[i][1] < 0)
+      rows[i] = keys[i][0];
+    else
+      others.insert(others.end(), keys[i].begin(), keys[i].end());
+  }
+  int size, rank;
+  MPI_Comm_size(comm, &size);
+  MPI_Comm_rank(comm, &rank);
+  const int count = others.size();
+  std::vector<int> counts(size), offsets(size + 1, 0);
+  MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
+  for (int r = 0; r < size; ++r)
+    offsets[r + 1] = offsets[r] + counts[r];
+  std::vector<std::int64_t> all(offsets.back());
+  MPI_Allgatherv(others.data(), count, MPI_INT64_T, all.data(), counts.data(), offsets.data(),
+                 MPI_INT64_T, comm);
+  std::vector<NodeKey> sorted(all.size() / 8);
+  for (std::size_t i = 0; i < sorted.size(); ++i)
+    std::copy_n(all.data() + 8 * i, 8, sorted[i].begin());
+  std::sort(sorted.begin(), sorted.end());
+  sorted.erase(std::unique(sorted.begin(), sorted.end()), sorted.end());
+  for (std::size_t i = 0; i < keys.size(); ++i)
+    if (rows[i] < 0)
+      rows[i] = vertex_rows
+                + (std::lower_bound(sorted.begin(), sorted.end(), keys[i]) - sorted.begin());
+  return rows;
+}
+
+/// The largest input vertex index + 1 (input indices need not be 0..N-1: a
+/// file may hold nodes no cell uses). Collective.
+std::int64_t vertex_rows(const compat::Mesh& mesh, MPI_Comm comm)
+{
+  const auto& input = mesh.geometry().input_global_indices();
+  std::int64_t last = input.empty() ? -1 : *std::max_element(input.begin(), input.end());
+  MPI_Allreduce(MPI_IN_PLACE, &last, 1, MPI_INT64_T, MPI_MAX, comm);
+  return last + 1;
 }
 } // namespace
 
@@ -60,29 +162,29 @@ StateFile::StateFile(const Problem& problem) : _comm(problem.comm)
   const std::size_t columns = 3 * _width;
   std::vector<std::int32_t> ghost_dofs;
   std::vector<std::int64_t> ghost_slots;
-  std::int64_t last = -1;
+  const std::int64_t vertices = vertex_rows(*problem.mesh, _comm);
+  std::int64_t last = vertices - 1;
   for (const auto& [V, dofs, column] :
        {std::tuple{problem.V_u, &problem.u_dofs, 0}, std::tuple{problem.V_phi, &problem.phi_dofs, d}})
   {
-    const auto vertex = input_vertex_of_dofs(*V);
+    const auto row = rows_of(node_keys(*V), vertices, _comm);
     const int bs = V->dofmap()->index_map_bs();
     const std::size_t owned = V->dofmap()->index_map->size_local();
-    for (std::size_t i = 0; i < vertex.size(); ++i)
+    for (std::size_t i = 0; i < row.size(); ++i)
     {
-      last = std::max(last, vertex[i]);
+      last = std::max(last, row[i]);
       for (int c = 0; c < bs; ++c)
       {
         auto& d = i < owned ? _dofs : ghost_dofs;
         auto& s = i < owned ? _slots : ghost_slots;
         d.push_back((*dofs)[bs * i + c]);
-        s.push_back(vertex[i] * columns + column + c);
+        s.push_back(row[i] * columns + column + c);
       }
     }
   }
   _num_owned = _dofs.size();
   _dofs.insert(_dofs.end(), ghost_dofs.begin(), ghost_dofs.end());
   _slots.insert(_slots.end(), ghost_slots.begin(), ghost_slots.end());
-  // Input indices need not be 0..N-1 (a file may hold nodes no cell uses)
   MPI_Allreduce(MPI_IN_PLACE, &last, 1, MPI_INT64_T, MPI_MAX, _comm);
   _rows = last + 1;
 

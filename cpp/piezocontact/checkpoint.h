@@ -3,9 +3,12 @@
 // x_J at which the Jacobian in use was assembled (its LU and the convergence
 // test's scaling are rebuilt from it, bit for bit) and the step control.
 //
-// The states are stored by input vertex (rows) and [u_x, u_y, phi] of x_n,
-// x_{n-1}, x_J (columns), gathered on rank 0 into one .npy file: a run can
-// be resumed on any number of processes.
+// The states are stored by node (rows) and [u_x, u_y, phi] of x_n, x_{n-1},
+// x_J (columns), gathered on rank 0 into one .npy file: a run can be resumed
+// on any number of processes. A vertex's row is its input index (P1: the
+// whole table); the other nodes of a higher degree (on edges, faces, inside
+// cells) follow, ordered by where they sit (the input vertices of their
+// entity and their barycentric coordinates on it): every dof is stored.
 #pragma once
 
 #include "config.h"
@@ -48,7 +51,7 @@ public:
 
 private:
   MPI_Comm _comm;
-  std::size_t _rows;  ///< largest input vertex index + 1
+  std::size_t _rows;  ///< largest input vertex index + 1, + the other nodes
   std::size_t _width; ///< d + 1: u and phi at one vertex
   /// W-dofs and their table slot (row * 9 + column of x_n): all local ones
   /// (to read), and the owned ones first (to write)

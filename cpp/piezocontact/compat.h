@@ -231,7 +231,7 @@ inline std::shared_ptr<const FunctionSpace> sub(const FunctionSpace& V, int i)
 #endif
 }
 
-// The mixed P1^d x P1 space of x = (u, phi). ffcx 0.9 generates no
+// The spaces of the forms. ffcx 0.9 generates no
 // ufcx_function_space (no functionspace_form_* helpers): the space is built
 // from basix the way dolfinx.fem.functionspace(basix.ufl.mixed_element(...))
 // does. Its forms' finite_element_hashes are 0 for a mixed space, so
@@ -243,25 +243,60 @@ using UfcxSpaceFactory = std::nullptr_t;
 using UfcxSpaceFactory = ufcx_function_space* (*)(const char*);
 #define PIEZO_UFCX_SPACE(factory) factory
 #endif
-inline std::shared_ptr<FunctionSpace> mixed_p1_space(std::shared_ptr<Mesh> mesh,
-                                                     [[maybe_unused]] UfcxSpaceFactory factory)
+namespace detail
 {
 #if PIEZO_DOLFINX_09
+/// The Lagrange element of a degree, as basix.ufl.element makes it (the
+/// GLL-warped variant: the equispaced points up to degree 2; create_form
+/// compares the hash of a non-mixed element with the forms')
+inline std::shared_ptr<const dfx::fem::FiniteElement<double>> lagrange(const Mesh& mesh, int degree,
+                                                                       int block_size)
+{
   namespace be = basix::element;
-  const int gdim = mesh->geometry().dim();
-  const auto cell = dfx::mesh::cell_type_to_basix_type(mesh->topology()->cell_type());
-  const auto p1 = basix::create_element<double>(be::family::P, cell, 1, be::lagrange_variant::unset,
-                                                be::dpc_variant::unset, false);
-  using Element = dfx::fem::FiniteElement<double>;
-  auto e = std::make_shared<const Element>(std::vector<std::shared_ptr<const Element>>{
-      std::make_shared<const Element>(p1, gdim), std::make_shared<const Element>(p1, 1)});
+  const auto cell = dfx::mesh::cell_type_to_basix_type(mesh.topology()->cell_type());
+  const auto e = basix::create_element<double>(
+      be::family::P, cell, degree, be::lagrange_variant::gll_warped, be::dpc_variant::unset,
+      false);
+  return std::make_shared<const dfx::fem::FiniteElement<double>>(e, block_size);
+}
+
+inline std::shared_ptr<FunctionSpace> space_of(std::shared_ptr<Mesh> mesh,
+                                               std::shared_ptr<const dfx::fem::FiniteElement<double>> e,
+                                               std::vector<std::size_t> value_shape)
+{
   auto dofmap = std::make_shared<const dfx::fem::DofMap>(
       dfx::fem::create_dofmap(mesh->comm(), dfx::fem::create_element_dof_layout(*e),
                               *mesh->topology_mutable(), nullptr, nullptr));
-  return std::make_shared<FunctionSpace>(mesh, e, dofmap,
-                                         std::vector<std::size_t>{std::size_t(gdim + 1)});
+  return std::make_shared<FunctionSpace>(mesh, e, dofmap, std::move(value_shape));
+}
+#endif
+} // namespace detail
+
+/// The mixed space P{ku}^d x P{kphi} of x = (u, phi), the degrees those of
+/// the factory's forms (dolfinx 0.5 makes it from ffcx's function space)
+inline std::shared_ptr<FunctionSpace> mixed_space(std::shared_ptr<Mesh> mesh,
+                                                  [[maybe_unused]] UfcxSpaceFactory factory,
+                                                  [[maybe_unused]] std::array<int, 2> degrees)
+{
+#if PIEZO_DOLFINX_09
+  const int gdim = mesh->geometry().dim();
+  using Element = dfx::fem::FiniteElement<double>;
+  auto e = std::make_shared<const Element>(std::vector<std::shared_ptr<const Element>>{
+      detail::lagrange(*mesh, degrees[0], gdim), detail::lagrange(*mesh, degrees[1], 1)});
+  return detail::space_of(mesh, e, {std::size_t(gdim + 1)});
 #else
   return std::make_shared<FunctionSpace>(dfx::fem::create_functionspace(factory, "x", mesh));
+#endif
+}
+
+/// The scalar P1 space of the contact pressure's forms (their test space)
+inline std::shared_ptr<FunctionSpace> pressure_space(std::shared_ptr<Mesh> mesh,
+                                                     [[maybe_unused]] UfcxSpaceFactory factory)
+{
+#if PIEZO_DOLFINX_09
+  return detail::space_of(mesh, detail::lagrange(*mesh, 1, 1), {});
+#else
+  return std::make_shared<FunctionSpace>(dfx::fem::create_functionspace(factory, "v_0", mesh));
 #endif
 }
 

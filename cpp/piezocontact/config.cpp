@@ -930,6 +930,9 @@ ModelSpec model_spec(const json& cfg)
 {
   ModelSpec spec;
   spec.manufactured = cfg.contains("manufactured");
+  const json& elements = cfg["elements"];
+  const int degree = elements["degree"].get<int>();
+  spec.degrees = {elements.value("u", degree), elements.value("phi", degree)};
   for (const auto& [name, bc] : cfg["boundaries"].items())
   {
     if (bc.value("contact", false))

@@ -152,6 +152,24 @@ void prepare_output(const std::filesystem::path& dir, const std::string& source,
   }
   bcast_error(error, comm);
 }
+namespace
+{
+/// The factory's model; degrees it has no kernels for are the config's error
+Model model_of(const ModelFactory& make_model, const NamedMesh& mesh, const ModelSpec& spec,
+               const std::string& source)
+{
+  try
+  {
+    return make_model(mesh, spec);
+  }
+  catch (const DegreesNotCarried& e)
+  {
+    throw ConfigError(printable(source, 200) + ": elements: u " + std::to_string(spec.degrees[0])
+                      + ", phi " + std::to_string(spec.degrees[1]) + ": " + e.what());
+  }
+}
+} // namespace
+
 json run_config(const RunRequest& request, MPI_Comm comm, const ModelFactory& make_model,
                 const Engine& engine, const StepObserver& observer)
 {
@@ -175,7 +193,7 @@ json run_config(const RunRequest& request, MPI_Comm comm, const ModelFactory& ma
   // from here on, every material is its tensors in the mesh frame
   const json cfg = resolve_materials(checked, d);
   const ModelSpec spec = model_spec(cfg);
-  Model model = make_model(mesh, spec);
+  Model model = model_of(make_model, mesh, spec, request.source);
   set_constants(cfg, model);
   const auto timed = timed_constants(cfg, model);
   Problem problem(std::move(model), settings.dirichlet, request.source, timed);

@@ -17,8 +17,10 @@
 #include <dolfinx/fem/FunctionSpace.h>
 #include <dolfinx/mesh/Mesh.h>
 #include <dolfinx/mesh/MeshTags.h>
+#include <array>
 #include <map>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -79,6 +81,16 @@ struct ModelSpec
   /// Each named boundary of the config -> the keys its entry sets (a term
   /// with a `where` key is instantiated on the boundaries that set it)
   std::map<std::string, std::vector<std::string>> boundary_keys;
+  /// The Lagrange degrees of u and phi (config "elements")
+  std::array<int, 2> degrees = {1, 1};
+};
+
+/// A model builder has no kernels for the degrees a ModelSpec asks for (the
+/// executable carries those compiled ahead of time); the driver turns it
+/// into a ConfigError naming the key
+struct DegreesNotCarried : std::runtime_error
+{
+  using std::runtime_error::runtime_error;
 };
 
 struct Model
@@ -86,6 +98,8 @@ struct Model
   NamedMesh mesh;
   /// The mixed space of x = (u, phi): sub-space 0 is u, 1 is phi
   std::shared_ptr<const compat::FunctionSpace> W;
+  /// The P1 space of the lumped contact pressure (null without contact forms)
+  std::shared_ptr<const compat::FunctionSpace> P;
   /// The unknown at t_n and the state at t_{n-1}, coefficients of the forms
   std::shared_ptr<dolfinx::fem::Function<double>> x, x_prev;
   /// The Constants shared by every term, by name (forms/piezo_forms.py
@@ -127,9 +141,9 @@ struct Model
   /// its charge int D.nu ds, one term per region it bounds (summed)
   std::map<std::string, FormList> electrode_charge;
 
-  /// Linear forms on W over the contact facets, read at the phi dofs (one
-  /// per vertex): int p psi ds and int psi ds, whose ratio is the lumped
-  /// contact pressure. Optional.
+  /// Linear forms on P over the contact facets (one value per vertex):
+  /// int p q ds and int q ds, whose ratio is the lumped contact pressure.
+  /// Optional.
   std::shared_ptr<const dolfinx::fem::Form<double>> contact_pressure_load, contact_nodal_area;
 };
 } // namespace piezocontact

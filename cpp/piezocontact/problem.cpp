@@ -55,7 +55,10 @@ Problem::Problem(Model&& model_, Collapsed u_, Collapsed phi_,
       u(named_function(V_u, "u")), phi(named_function(V_phi, "phi")),
       u_exact(model.u_exact ? named_function(V_u, "u_exact") : nullptr),
       phi_exact(model.phi_exact ? named_function(V_phi, "phi_exact") : nullptr),
-      contact_pressure(has_contact(model) ? named_function(V_phi, "contact_pressure") : nullptr)
+      contact_pressure(has_contact(model) ? named_function(
+                           std::const_pointer_cast<compat::FunctionSpace>(model.P),
+                           "contact_pressure")
+                                          : nullptr)
 {
   for (const auto& c : timed)
   {
@@ -202,7 +205,9 @@ double Problem::applied_load() const
 
 la::Vector<double> Problem::assemble(const FormList& terms) const
 {
-  la::Vector<double> b(W->dofmap()->index_map, W->dofmap()->index_map_bs());
+  // the terms' test space (W, or the contact pressure's P)
+  const auto& V = terms.empty() ? *W : *terms.front()->function_spaces().at(0);
+  la::Vector<double> b(V.dofmap()->index_map, V.dofmap()->index_map_bs());
   for (const auto& term : terms)
     fem::assemble_vector(b.mutable_array(), *term);
   b.scatter_rev(std::plus<double>());
@@ -413,13 +418,13 @@ double Problem::update_contact_pressure()
     return 0.0;
   const auto load = assemble({model.contact_pressure_load});
   const auto area = assemble({model.contact_nodal_area});
-  const std::int32_t owned = V_phi->dofmap()->index_map->size_local();
+  const std::int32_t owned = model.P->dofmap()->index_map->size_local();
   auto p = contact_pressure->x()->mutable_array();
   double local = 0.0, global = 0.0;
   for (std::int32_t i = 0; i < owned; ++i)
   {
-    const double a = area.array()[phi_dofs[i]];
-    p[i] = a > 0.0 ? load.array()[phi_dofs[i]] / a : 0.0;
+    const double a = area.array()[i];
+    p[i] = a > 0.0 ? load.array()[i] / a : 0.0;
     if (p[i] > 0.0)
       local += a;
   }

@@ -112,15 +112,15 @@ public:
   /// (0 for the others)
   std::vector<double> target_charges() const;
 
-  /// The lumped contact pressure on V_phi (the ratio of the model's
+  /// The lumped contact pressure on the P1 space P (the ratio of the model's
   /// contact_pressure_load and contact_nodal_area at each vertex of Gamma_C,
   /// 0 elsewhere) at the current x, and the measure of Gamma_C where it is
   /// positive (the contact length in 2D, area in 3D); 0 without the forms.
   /// Collective.
   double update_contact_pressure();
 
-  /// A sum of linear forms on W, assembled (ghost contributions added to
-  /// their owners)
+  /// A sum of linear forms on one test space (W, or P), assembled (ghost
+  /// contributions added to their owners)
   dolfinx::la::Vector<double> assemble(const FormList& terms) const;
 
   /// Spatial dimension

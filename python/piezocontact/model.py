@@ -37,7 +37,7 @@ import entry_points  # noqa: E402
 import piezo_forms as pf  # noqa: E402
 import terms  # noqa: E402
 # the elements (those ffcx compiles), by cell
-from entry_points import DIMENSION, POINTS, elements  # noqa: E402
+from entry_points import DIMENSION, elements, points  # noqa: E402
 
 
 def python_mesh(named):
@@ -48,7 +48,7 @@ def python_mesh(named):
     if cpp_mesh.geometry.dim != DIMENSION[cell_name]:  # the element's, and the kernels'
         raise ValueError(f"a mesh of {cell_name}s in {cpp_mesh.geometry.dim}D: "
                          f"expected {DIMENSION[cell_name]}D coordinates")
-    coordinate, _ = elements(cell_name)
+    coordinate = elements(cell_name)[0]
     return dmesh.Mesh(cpp_mesh, ufl.Mesh(coordinate))
 
 
@@ -99,7 +99,7 @@ def _mark(msh, dim, entities):
     return dmesh.meshtags(msh, dim, entities, np.ones_like(entities))
 
 
-Spec = collections.namedtuple("Spec", "manufactured contact electrodes boundary_keys")
+Spec = collections.namedtuple("Spec", "manufactured contact electrodes boundary_keys degrees")
 
 
 class JitModel:
@@ -117,21 +117,25 @@ class JitModel:
         self.named = named
         # a copy: the core's ModelSpec lives for the factory's call only
         self.spec = Spec(spec.manufactured, list(spec.contact), list(spec.electrodes),
-                         {b: list(keys) for b, keys in spec.boundary_keys.items()})
+                         {b: list(keys) for b, keys in spec.boundary_keys.items()},
+                         tuple(spec.degrees))
         self.mesh = msh = python_mesh(named)
         cell_name = compat.cell_name(msh.topology)
-        self.W = compat.functionspace(msh, elements(cell_name)[1])
+        _, mixed, pressure = elements(cell_name, *spec.degrees)
+        self.W = compat.functionspace(msh, mixed)
+        self.P = compat.functionspace(msh, pressure)  # the contact pressure's
         self.x = fem.Function(self.W, name="x")
         self.x_prev = fem.Function(self.W, name="x_prev")
         self.data, self.materials, self.loads = model_constants(msh, named, spec.manufactured)
         self.sources = sources(msh.geometry.dim, spec.manufactured)
         self.terms = terms.catalogue(msh.geometry.dim, spec.manufactured)
         self.context = terms.Context(self.x, self.x_prev, ufl.TestFunction(self.W), self.data,
-                                     law=contact_law or pf.p)
+                                     law=contact_law or pf.p, q=ufl.TestFunction(self.P))
         self.dx_trial = ufl.TrialFunction(self.W)
         self.contact_facets = np.unique(np.concatenate(
             [named.boundary_facets(b) for b in spec.contact] + [np.zeros(0, np.int32)]))
-        self.points = {name: np.array(p[cell_name]) for name, p in POINTS.items()}
+        self.points = {kind: np.array(points(kind, cell_name, self.spec.degrees))
+                       for kind in ("midpoint", "u_nodes", "phi_nodes")}
         self.F, self.J, self.J_state, self.L = [], [], [], []
         self.outputs = {}  # slot -> [(piece name, term name, form or expression)]
         for term in self.terms:
@@ -258,7 +262,7 @@ class JitModel:
             return {name: c(obj) for name, obj in objects.items()}
         m = cpp.Model()
         m.mesh = self.named
-        m.W, m.x, m.x_prev = c(self.W), c(self.x), c(self.x_prev)
+        m.W, m.P, m.x, m.x_prev = c(self.W), c(self.P), c(self.x), c(self.x_prev)
         m.constants = cpp_map(self.data)
         m.materials = {r: cpp_map(mat) for r, mat in self.materials.items()}
         m.loads = {b: cpp_map(load) for b, load in self.loads.items()}
