@@ -28,6 +28,7 @@
 #include <dolfinx/mesh/MeshTags.h>
 #include <dolfinx/mesh/generation.h>
 #include <dolfinx/mesh/utils.h>
+#include <dolfinx/refinement/refine.h>
 #include <map>
 #include <memory>
 #include <numeric>
@@ -300,21 +301,41 @@ inline std::shared_ptr<FunctionSpace> pressure_space(std::shared_ptr<Mesh> mesh,
 #endif
 }
 
-/// Cell-wise constant (DG0) space with `size` components (size > 1)
-inline std::shared_ptr<FunctionSpace> dg0_space(std::shared_ptr<Mesh> mesh, int size)
+/// A Lagrange space of a degree (continuous, or DG) with `size` components
+/// (1: scalar), for output: no form is made on it
+inline std::shared_ptr<FunctionSpace> lagrange_space(std::shared_ptr<Mesh> mesh, int degree,
+                                                     bool discontinuous, int size)
 {
   namespace be = basix::element;
   const auto cell = dfx::mesh::cell_type_to_basix_type(topology(*mesh).cell_type());
 #if PIEZO_DOLFINX_09
-  const auto dg0 = basix::create_element<double>(be::family::P, cell, 0,
-                                                 be::lagrange_variant::unset,
-                                                 be::dpc_variant::unset, true);
-  return std::make_shared<FunctionSpace>(
-      dfx::fem::create_functionspace(mesh, dg0, {std::size_t(size)}));
+  const auto e = basix::create_element<double>(be::family::P, cell, degree,
+                                               be::lagrange_variant::unset,
+                                               be::dpc_variant::unset, discontinuous);
+  return std::make_shared<FunctionSpace>(dfx::fem::create_functionspace(
+      mesh, e, size == 1 ? std::vector<std::size_t>{} : std::vector<std::size_t>{std::size_t(size)}));
 #else
-  const auto dg0 = basix::create_element(be::family::P, cell, 0, be::lagrange_variant::unset,
-                                         be::dpc_variant::unset, true);
-  return std::make_shared<FunctionSpace>(dfx::fem::create_functionspace(mesh, dg0, size));
+  const auto e = basix::create_element(be::family::P, cell, degree, be::lagrange_variant::unset,
+                                       be::dpc_variant::unset, discontinuous);
+  return std::make_shared<FunctionSpace>(dfx::fem::create_functionspace(mesh, e, size));
+#endif
+}
+
+/// Cell-wise constant (DG0) space with `size` components (size > 1)
+inline std::shared_ptr<FunctionSpace> dg0_space(std::shared_ptr<Mesh> mesh, int size)
+{
+  return lagrange_space(mesh, 0, true, size);
+}
+
+/// The mesh refined once uniformly (each edge halved), its cells on the
+/// process of their parent
+inline std::shared_ptr<Mesh> refined_once(const Mesh& mesh)
+{
+#if PIEZO_DOLFINX_09
+  return std::make_shared<Mesh>(
+      std::get<0>(dfx::refinement::refine(mesh, std::nullopt, nullptr)));
+#else
+  return std::make_shared<Mesh>(dfx::refinement::refine(mesh, false));
 #endif
 }
 

@@ -44,10 +44,18 @@ std::string failure_reason(const fs::path& dir, int saved_errno, const std::stri
   return fallback;
 }
 
-/// The P1 fields written as nodal/NAME_NNNN.npy
+/// Whether u or phi has nodes beyond the vertices (a degree above 1)
+bool higher_degree(const Problem& problem)
+{
+  const std::size_t vertices = compat::topology(*problem.mesh).dim() + 1;
+  return problem.V_u->dofmap()->cell_dofs(0).size() > vertices
+         or problem.V_phi->dofmap()->cell_dofs(0).size() > vertices;
+}
+
+/// The fields written as nodal/NAME_NNNN.npy
 constexpr const char* nodal_names[] = {"u", "phi", "contact_pressure"};
 
-/// [x, y, (z,) values...] of the owned dofs of a collapsed P1 function, on rank 0
+/// [x, y, (z,) values...] of the owned nodes of a collapsed Lagrange function, on rank 0
 std::pair<std::vector<double>, std::size_t>
 gather_nodal(const fem::Function<double>& f, MPI_Comm comm)
 {
@@ -275,6 +283,7 @@ Writer::Writer(const Problem& problem, const OutputSettings& settings, const fs:
     _stress_components.back()->name = "stress_" + voigt[c];
     _stress_maps.push_back(std::move(map));
   }
+  _out = std::make_unique<OutputMesh>(mesh, higher_degree(problem));
   if (root)
     _index = std::make_unique<pugi::xml_document>();
   if (resume_step > 0)
@@ -285,7 +294,7 @@ Writer::Writer(const Problem& problem, const OutputSettings& settings, const fs:
   // The mesh goes in through dolfinx once, as solution.xdmf/.h5 (so that
   // XDMFFile::read_mesh still reads it there); that XML becomes the index
   const auto index = dir / "solution.xdmf";
-  write_hdf5(index, [&](io::XDMFFile& f) { f.write_mesh(*mesh); });
+  write_hdf5(index, [&](io::XDMFFile& f) { f.write_mesh(*_out->mesh()); });
   collectively(problem.comm, root,
                [&]
                {
@@ -380,11 +389,11 @@ void Writer::write_xdmf_step(int step, double t)
              [&](io::XDMFFile& f)
              {
                for (const auto& fn : {_problem.u, _problem.phi, _D})
-                 f.write_function(*fn, t, "/Xdmf/Domain");
+                 f.write_function((*_out)(*fn), t, "/Xdmf/Domain");
                if (_problem.contact_pressure)
-                 f.write_function(*_problem.contact_pressure, t, "/Xdmf/Domain");
+                 f.write_function((*_out)(*_problem.contact_pressure), t, "/Xdmf/Domain");
                for (const auto& fn : _stress_components)
-                 f.write_function(*fn, t, "/Xdmf/Domain");
+                 f.write_function((*_out)(*fn), t, "/Xdmf/Domain");
              });
   collectively(_problem.comm, rank_of(_problem.comm) == 0,
                [&]

@@ -13,6 +13,8 @@
 // summary) are dropped by --resume, which writes them again.
 #pragma once
 
+#include "output_mesh.h"
+
 #include "config.h"
 #include "problem.h"
 
@@ -90,5 +92,7 @@ private:
   /// where each takes its values in _stress
   std::vector<std::shared_ptr<dolfinx::fem::Function<double>>> _stress_components;
   std::vector<std::vector<std::int32_t>> _stress_maps;
+  /// The mesh of the files (refined at a degree above 1)
+  std::unique_ptr<OutputMesh> _out;
 };
 } // namespace piezocontact
