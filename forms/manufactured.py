@@ -51,29 +51,38 @@ def shared_data():
         "t": pf.Datum(()),             # time of the step (s)
         # 1: add the trigonometric part of U, Phi; 0: linear
         "space_smooth": pf.Datum((), "manufactured.space", flag="smooth"),
+        # 1: add a quadratic part (P2 holds it exactly)
+        "space_quadratic": pf.Datum((), "manufactured.space", flag="quadratic"),
         # 1: theta = sin(pi t/2); 0: theta = t
         "time_smooth": pf.Datum((), "manufactured.time", flag="smooth"),
     }
 
 
 def space_profile(X, data):
-    """U(x), Phi(x): linear, plus the smooth part when space_smooth = 1."""
-    s, pi, sin, cos = data["space_smooth"], ufl.pi, ufl.sin, ufl.cos
+    """U(x), Phi(x): linear, plus the smooth part when space_smooth = 1, or
+    a quadratic part (bending of the body: u_y ~ x^2, and a potential
+    quadratic through the thickness) when space_quadratic = 1."""
+    s, q, pi, sin, cos = data["space_smooth"], data["space_quadratic"], ufl.pi, ufl.sin, ufl.cos
     if X.ufl_shape[0] == 2:
         x, y = X[0], X[1]
         U = (ufl.as_vector([0.5 * x + 0.25 * y, 0.5 - x + 0.3 * y])
              + s * ufl.as_vector([0.5 * sin(pi * x) * cos(pi * y),
-                                  0.3 * cos(pi * x) * sin(pi * y) - 0.2 * sin(pi * x)]))
-        Phi = 0.3 + 0.5 * x - 0.4 * y + s * 0.5 * sin(pi * x) * cos(pi * y)
+                                  0.3 * cos(pi * x) * sin(pi * y) - 0.2 * sin(pi * x)])
+             + q * ufl.as_vector([-0.6 * x * y + 0.1 * y * y, 0.3 * x * x - 0.2 * x * y]))
+        Phi = (0.3 + 0.5 * x - 0.4 * y + s * 0.5 * sin(pi * x) * cos(pi * y)
+               + q * (0.4 * y * y - 0.3 * x * y + 0.2 * x * x))
         return U, Phi
     x, y, z = X[0], X[1], X[2]
     U = (ufl.as_vector([0.5 * x + 0.25 * y - 0.1 * z, 0.5 - x + 0.3 * y + 0.2 * z,
                         0.2 * x - 0.15 * y + 0.4 * z])
          + s * ufl.as_vector([0.5 * sin(pi * x) * cos(pi * y) * cos(pi * z),
                               0.3 * cos(pi * x) * sin(pi * y) - 0.2 * sin(pi * x) * cos(pi * z),
-                              0.25 * sin(pi * y) * sin(pi * z) + 0.1 * cos(pi * x)]))
+                              0.25 * sin(pi * y) * sin(pi * z) + 0.1 * cos(pi * x)])
+         + q * ufl.as_vector([-0.6 * x * z + 0.1 * y * y, 0.2 * y * z - 0.1 * x * x,
+                              0.3 * x * x - 0.2 * x * y]))
     Phi = (0.3 + 0.5 * x - 0.4 * y + 0.2 * z
-           + s * 0.5 * sin(pi * x) * cos(pi * y) * cos(pi * z))
+           + s * 0.5 * sin(pi * x) * cos(pi * y) * cos(pi * z)
+           + q * (0.4 * z * z - 0.3 * x * y + 0.2 * y * z))
     return U, Phi
 
 

@@ -25,14 +25,20 @@ SMALL = {  # the smallest honest size of each: every feature it has still at wor
 }
 
 
+# At degree 2: examples 1 and 2, two regions with contact, 3D, a
+# floating electrode (the list)
+P2 = ["square.json", "contactor.json", "bilayer.json", "manufactured_3d.json", "sensor.json"]
+
+
 def test_every_demo_config_is_covered():
     shipped = {p.name for p in (ROOT / "demos").glob("*.json")}
     assert shipped == set(SMALL)
 
 
-@pytest.mark.parametrize("name", sorted(SMALL))
-def test_engines_agree_on_demo_config(tmp_path, name):
-    overrides = SMALL[name] + ["output.xdmf=false", "output.nodal=none"]
+@pytest.mark.parametrize("name,degree", [(n, 1) for n in sorted(SMALL)] + [(n, 2) for n in P2])
+def test_engines_agree_on_demo_config(tmp_path, name, degree):
+    overrides = SMALL[name] + ["output.xdmf=false", "output.nodal=none",
+                               f"elements.degree={degree}"]
     runs = {engine: run_solver(engine, tmp_path / engine, overrides,
                                config=ROOT / "demos" / name)[0]
             for engine in ("cpp", "cpp-jit", "reference")}

@@ -18,7 +18,7 @@ from manufactured import PHI0, U0  # noqa: E402
 MMS = ROOT / "demos" / "manufactured.json"
 # The contact term of the residual (piezo_forms.contact_residual), and the
 # same halved: the edit of the tests below
-CONTACT_TERM = "    return contact_term(u, w, ufl.FacetNormal(x.ufl_domain()), ds, data, law)\n"
+CONTACT_TERM = "    return contact_term(u, w, ufl.FacetNormal(x.ufl_domain()), dsq, data, law)\n"
 HALF_CONTACT_TERM = CONTACT_TERM.replace("return ", "return 0.5 * ")
 
 
