@@ -112,9 +112,9 @@ CASES = {
         SQUARE, ["boundaries.left.potential=exact"],
         "boundaries.left.potential = \"exact\": needs the key manufactured "
         "(the exact solution to take it from)"),
-    "unknown manufactured profile": (MMS, ["manufactured.space=quadratic"],
-                                     "manufactured.space = \"quadratic\": expected one of "
-                                     "linear, smooth"),
+    "unknown manufactured profile": (MMS, ["manufactured.space=cubic"],
+                                     "manufactured.space = \"cubic\": expected one of "
+                                     "linear, quadratic, smooth"),
     "a load with a manufactured solution": (MMS, ["loads.body_force=[1,0]"],
                                             f"loads.body_force = [1.0,0.0]: {UNUSED}"),
     "a traction with a manufactured solution": (MMS, ["boundaries.top.traction=[0,-10]"],
