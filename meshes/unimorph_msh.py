@@ -4,7 +4,7 @@ and 2 mm wide along y, z up. Named faces: "clamp" (x = 0, both layers),
 "electrode_top" (the film's top), "electrode_mid" (the film/substrate
 interface, an interior face), "contact" (the substrate's bottom, z = 0).
 
-    /usr/bin/python3 meshes/unimorph_msh.py [--size 0.25e-3] [--output demos/unimorph.msh]
+    /usr/bin/python3 meshes/unimorph_msh.py [--size 0.5e-3] [--output demos/unimorph.msh]
 """
 
 import argparse
@@ -45,7 +45,7 @@ def build(size):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--size", type=float, default=0.25e-3)
+    ap.add_argument("--size", type=float, default=0.5e-3)
     ap.add_argument("--output", type=Path,
                     default=Path(__file__).resolve().parents[1] / "demos" / "unimorph.msh")
     args = ap.parse_args()

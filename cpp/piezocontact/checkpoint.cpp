@@ -1,4 +1,5 @@
 #include "checkpoint.h"
+#include "cell_geometry.h"
 #include "output.h"
 
 #include <algorithm>
@@ -19,35 +20,9 @@ using NodeKey = std::array<std::int64_t, 8>; // 4 vertices, 4 coordinates (-1: n
 NodeKey node_key(std::span<const double> x, const std::vector<std::array<double, 3>>& v,
                  const std::vector<std::int64_t>& input)
 {
-  // barycentric coordinates: solve sum_i l_i (v_i - v_0) = x - v_0 (Cramer)
-  const int n = v.size() - 1;
-  double a[3][3] = {}, b[3] = {};
-  for (int r = 0; r < n; ++r)
-  {
-    for (int c = 0; c < n; ++c)
-      a[r][c] = v[c + 1][r] - v[0][r];
-    b[r] = x[r] - v[0][r];
-  }
-  auto det = [n](const double m[3][3])
-  {
-    return n == 2 ? m[0][0] * m[1][1] - m[0][1] * m[1][0]
-                  : m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
-                        - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
-                        + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
-  };
-  const double D = det(a);
-  std::vector<double> l(n + 1, 1.0);
-  for (int c = 0; c < n; ++c)
-  {
-    double m[3][3];
-    std::copy(&a[0][0], &a[0][0] + 9, &m[0][0]);
-    for (int r = 0; r < n; ++r)
-      m[r][c] = b[r];
-    l[c + 1] = det(m) / D;
-    l[0] -= l[c + 1];
-  }
+  const auto l = barycentric(x, v);
   std::vector<std::pair<std::int64_t, std::int64_t>> on; // (input vertex, rounded l)
-  for (int i = 0; i <= n; ++i)
+  for (std::size_t i = 0; i < l.size(); ++i)
     if (const auto rounded = std::llround(l[i] * 1e9); rounded > 0)
       on.push_back({input[i], rounded});
   std::sort(on.begin(), on.end());
@@ -66,20 +41,16 @@ std::vector<NodeKey> node_keys(const compat::FunctionSpace& V)
   std::vector<NodeKey> keys(imap.size_local() + imap.num_ghosts());
   const auto coordinates = V.tabulate_dof_coordinates(false);
   const auto& input = mesh.geometry().input_global_indices();
-  const auto x = mesh.geometry().x();
   const int tdim = compat::topology(mesh).dim();
   const auto cells = compat::topology(mesh).index_map(tdim);
   const std::int32_t num_cells = cells->size_local() + cells->num_ghosts();
-  std::vector<std::array<double, 3>> vertices(tdim + 1);
   std::vector<std::int64_t> vertex_input(tdim + 1);
   for (std::int32_t c = 0; c < num_cells; ++c)
   {
+    const auto vertices = cell_vertices(mesh, c);
     const auto nodes = compat::cell_nodes(mesh, c); // P1 geometry: the vertices
     for (int i = 0; i <= tdim; ++i)
-    {
-      std::copy_n(x.data() + 3 * nodes[i], 3, vertices[i].begin());
       vertex_input[i] = input[nodes[i]];
-    }
     for (const std::int32_t dof : V.dofmap()->cell_dofs(c))
       keys[dof] = node_key(std::span(coordinates.data() + 3 * dof, 3), vertices, vertex_input);
   }

@@ -930,8 +930,9 @@ ModelSpec model_spec(const json& cfg)
 {
   ModelSpec spec;
   spec.manufactured = cfg.contains("manufactured");
-  const json& elements = cfg["elements"];
-  const int degree = elements["degree"].get<int>();
+  // (a summary written before "elements" existed has none: degree 1)
+  const json elements = cfg.contains("elements") ? cfg["elements"] : json::object();
+  const int degree = elements.value("degree", 1);
   spec.degrees = {elements.value("u", degree), elements.value("phi", degree)};
   for (const auto& [name, bc] : cfg["boundaries"].items())
   {

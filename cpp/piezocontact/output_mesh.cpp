@@ -1,4 +1,7 @@
 #include "output_mesh.h"
+#include "cell_geometry.h"
+
+#include <algorithm>
 
 #include <dolfinx/geometry/utils.h>
 #include <stdexcept>
@@ -45,16 +48,25 @@ OutputMesh::Transfer OutputMesh::transfer_for(const fem::Function<double>& f) co
   t.target->name = f.name;
   t.points = cellwise ? cell_midpoints(*_refined)
                       : t.target->function_space()->tabulate_dof_coordinates(false);
-  // each refined cell lies in a local cell of its parent's process
+  // Each refined cell lies in a local cell of its parent's process: of the
+  // cells whose bounding box holds a point, the one it is deepest in (its
+  // smallest barycentric coordinate largest; no distance tolerance, which
+  // would depend on the mesh's size)
   const auto tree = compat::cell_tree(*_mesh);
   const auto candidates = geometry::compute_collisions(tree, std::span<const double>(t.points));
-  const auto colliding
-      = geometry::compute_colliding_cells(*_mesh, candidates, std::span<const double>(t.points));
   for (std::size_t i = 0; i < t.points.size() / 3; ++i)
   {
-    if (colliding.links(i).empty())
+    std::int32_t best = -1;
+    double deepest = -1e-8;
+    for (const std::int32_t c : candidates.links(i))
+    {
+      const auto l = barycentric(std::span(t.points.data() + 3 * i, 3), cell_vertices(*_mesh, c));
+      if (const double depth = *std::min_element(l.begin(), l.end()); depth > deepest)
+        best = c, deepest = depth;
+    }
+    if (best < 0)
       throw std::logic_error("output mesh: a refined node outside its process's cells");
-    t.cells.push_back(colliding.links(i)[0]);
+    t.cells.push_back(best);
   }
   return t;
 }

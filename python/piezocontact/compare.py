@@ -122,8 +122,9 @@ class FieldComparer:
         self.mesh = python_mesh(self.named)
         self.facet_tags, self.tag_of = meshtags(self.named.facet_tags), self.named.tag_of
         self.dim = self.mesh.geometry.dim
-        self.V = {"u": functionspace(self.mesh, ("Lagrange", 1, (self.dim,))),
-                  "phi": functionspace(self.mesh, ("Lagrange", 1))}
+        degree_u, degree_phi = cpp.model_spec(json.dumps(cfg)).degrees  # the core's reading
+        self.V = {"u": functionspace(self.mesh, ("Lagrange", degree_u, (self.dim,))),
+                  "phi": functionspace(self.mesh, ("Lagrange", degree_phi))}
         self._order = {f: self._lexorder(V.tabulate_dof_coordinates()[:, :self.dim])
                        for f, V in self.V.items()}
 

@@ -25,9 +25,10 @@ SMALL = {  # the smallest honest size of each: every feature it has still at wor
 }
 
 
-# At degree 2: examples 1 and 2, two regions with contact, 3D, a
+# At degree 2 (the unimorph's own): examples 1 and 2, two regions with contact, 3D, a
 # floating electrode (the list)
-P2 = ["square.json", "contactor.json", "bilayer.json", "manufactured_3d.json", "sensor.json"]
+P2 = ["square.json", "contactor.json", "bilayer.json", "manufactured_3d.json", "sensor.json",
+      "unimorph.json"]
 
 
 def test_every_demo_config_is_covered():

@@ -49,7 +49,9 @@ def steady_krylov(summary):
 
 @pytest.mark.parametrize("config, overrides", [(SQUARE, ["mesh.n=32", "time.steps=8",
                                                           "time.T=0.25"]),
-                                               (SLAB, slab(3))], ids=["2D", "3D"])
+                                               (SLAB, slab(3)),
+                                               (SLAB, slab(2) + ["elements.degree=2"])],
+                         ids=["2D", "3D", "3D-P2"])
 def test_iterative_gives_the_direct_answers(config, overrides, tmp_path):
     direct, _ = run_solver("cpp", tmp_path / "direct", overrides + QUIET, config=config)
     iterative, _ = run_solver("cpp", tmp_path / "it", overrides + QUIET + ITERATIVE,

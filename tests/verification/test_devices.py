@@ -292,7 +292,7 @@ def test_3d_regions_under_mpi_resume_and_xdmf(tmp_path):
     """The 3D two-region unimorph (its .msh converted once, on rank 0):
     mpirun -n 2 gives the serial answers (1e-8); a run to T/2 extended to T
     on resume equals the straight run (1e-8: the checkpoint holds u_x, u_y,
-    u_z, phi per vertex); the XDMF steps hold u, phi, D, the contact
+    u_z, phi per node; the demo's degree is 2); the XDMF steps hold u, phi, D, the contact
     pressure and the six stress components."""
     base = ["time.steps=4", "time.T=0.2"]
     serial = run_solver("cpp", tmp_path / "serial", base, config=ROOT / "demos" / "unimorph.json")[0]
