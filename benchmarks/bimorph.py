@@ -23,6 +23,7 @@ the wall time and the peak memory of each run (a subprocess each).
 
 import argparse
 import json
+import os
 import subprocess
 import sys
 import tempfile
@@ -30,6 +31,7 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "meshes"))  # the gmsh helpers
 L, H = 0.1, 0.5e-3          # length, thickness of one layer (m)
 E, D31 = 2.0e9, 22e-12      # Young's modulus (Pa), d31 (C/N) of PVDF
 EPS = 0.1062e-9             # permittivity (F/m)
@@ -41,6 +43,7 @@ def write_mesh(path, nx, per_layer):
     """Two layers of nx x per_layer rectangles, each cut in two triangles:
     regions "upper" (y > 0), "lower"; boundaries clamp (x = 0), top, bottom."""
     import gmsh
+    from physical_groups import name_groups
     gmsh.initialize()
     gmsh.option.setNumber("General.Terminal", 0)
     gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
@@ -63,12 +66,8 @@ def write_mesh(path, nx, per_layer):
                 named["bottom"].append(curve)
         for surface in (lower, upper):
             gmsh.model.mesh.setTransfiniteSurface(surface)
-        for tag, (name, curves) in enumerate(named.items(), start=1):
-            gmsh.model.addPhysicalGroup(1, curves, tag)
-            gmsh.model.setPhysicalName(1, tag, name)
-        for tag, (name, surface) in enumerate((("lower", lower), ("upper", upper)), start=1):
-            gmsh.model.addPhysicalGroup(2, [surface], tag)
-            gmsh.model.setPhysicalName(2, tag, name)
+        name_groups(1, named)
+        name_groups(2, {"lower": [lower], "upper": [upper]})
         gmsh.model.mesh.generate(2)
         gmsh.write(str(path))
     finally:
@@ -85,11 +84,13 @@ def layer(sign):
 
 
 def config(msh, degree):
+    """The run; `degree` an integer (u and phi) or {"u": k_u, "phi": k_phi}"""
+    elements = degree if isinstance(degree, dict) else {"degree": degree}
     return {"mesh": {"type": "msh", "path": str(msh)},
             "regions": {"upper": layer(1.0), "lower": layer(-1.0)},
             "boundaries": {"clamp": {"displacement": [0.0, 0.0]},
                            "top": {"potential": VOLT}, "bottom": {"potential": 0.0}},
-            "elements": {"degree": degree},
+            "elements": elements,
             "time": {"T": 1.0, "steps": 1},
             "probes": [[L, 0.0]],
             "output": {"xdmf": False, "nodal": "none"}}
@@ -100,16 +101,20 @@ def run(workdir, nx, per_layer, degree, engine="cpp"):
     msh = workdir / f"bimorph_{nx}_{per_layer}.msh"
     if not msh.exists():
         write_mesh(msh, nx, per_layer)
-    cfg = workdir / f"bimorph_{nx}_{per_layer}_p{degree}.json"
+    tag = degree if isinstance(degree, int) else f"u{degree['u']}phi{degree['phi']}"
+    cfg = workdir / f"bimorph_{nx}_{per_layer}_p{tag}.json"
     cfg.write_text(json.dumps(config(msh, degree)))
     out = workdir / cfg.stem
     exe = ([str(ROOT / "build" / "piezo-contact")] if engine == "cpp"
            else ["/usr/bin/python3", "-m", "piezocontact"])
     start = time.perf_counter()
     # GNU time prints the run's own peak resident memory (KB) as its last line
+    # this tree's build of the package, not an installed one
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(
+        [str(ROOT / "build" / "python")] + os.environ.get("PYTHONPATH", "").split(os.pathsep)))
     proc = subprocess.run(["/usr/bin/time", "-f", "%M"] + exe
                           + ["--config", str(cfg), "--output", str(out), "--quiet"],
-                          capture_output=True, text=True)
+                          capture_output=True, text=True, env=env)
     wall = time.perf_counter() - start
     if proc.returncode != 0:
         raise RuntimeError(proc.stderr)

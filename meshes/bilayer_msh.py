@@ -11,6 +11,7 @@ import argparse
 from pathlib import Path
 
 import gmsh
+from physical_groups import name_groups
 
 
 def build(size):
@@ -27,12 +28,8 @@ def build(size):
                           ("bottom", y1 < 1e-6), ("top", y0 > 1 - 1e-6)):
             if hit:
                 sides[name].append(curve)
-    for tag, (name, curves) in enumerate(sorted(sides.items()), start=1):
-        gmsh.model.addPhysicalGroup(1, curves, tag)
-        gmsh.model.setPhysicalName(1, tag, name)
-    for tag, (name, surface) in enumerate((("substrate", substrate), ("film", film)), start=1):
-        gmsh.model.addPhysicalGroup(2, [surface], tag)
-        gmsh.model.setPhysicalName(2, tag, name)
+    name_groups(1, dict(sorted(sides.items())))
+    name_groups(2, {"substrate": [substrate], "film": [film]})
     gmsh.model.mesh.generate(2)
 
 

@@ -11,6 +11,7 @@ import argparse
 from pathlib import Path
 
 import gmsh
+from physical_groups import name_groups
 
 L, W, T_SUB, T_PZT = 10e-3, 2e-3, 0.5e-3, 0.25e-3
 
@@ -34,12 +35,8 @@ def build(size):
             faces["electrode_mid"].append(face)
         elif z1 < tol:
             faces["contact"].append(face)
-    for tag, (name, members) in enumerate(sorted(faces.items()), start=1):
-        gmsh.model.addPhysicalGroup(2, members, tag)
-        gmsh.model.setPhysicalName(2, tag, name)
-    for tag, (name, volume) in enumerate((("substrate", substrate), ("piezo", piezo)), start=1):
-        gmsh.model.addPhysicalGroup(3, [volume], tag)
-        gmsh.model.setPhysicalName(3, tag, name)
+    name_groups(2, dict(sorted(faces.items())))
+    name_groups(3, {"substrate": [substrate], "piezo": [piezo]})
     gmsh.model.mesh.generate(3)
 
 
