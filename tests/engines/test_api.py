@@ -27,18 +27,20 @@ def square_law(r, c_p):
     return c_p * ufl.max_value(r, 0) ** 2
 
 
-def run(tmp_path, name, **kwargs):
+def run(tmp_path, name, degree=1, **kwargs):
     return piezocontact.solve(SQUARE, tmp_path / name, progress=False,
-                              overrides=SMALL + ["contact.c_p=1e22"], **kwargs)
+                              overrides=SMALL + ["contact.c_p=1e22", f"elements.degree={degree}"],
+                              **kwargs)
 
 
-@pytest.fixture(scope="module")
-def hooked(tmp_path_factory):
+@pytest.fixture(scope="module", params=[1, 2], ids=["P1", "P2"])
+def hooked(tmp_path_factory, request):
+    """The hooks at degree 1 and at degree 2 (the hooks are UFL: any degree)"""
     base = tmp_path_factory.mktemp("hooks")
     hooks = dict(extra_residual=cubic_spring, contact_law=square_law)
-    return {"plain": run(base, "plain"),
-            "cpp": run(base, "cpp", engine="cpp", **hooks),
-            "reference": run(base, "reference", engine="reference", **hooks)}
+    return {"plain": run(base, "plain", request.param),
+            "cpp": run(base, "cpp", request.param, engine="cpp", **hooks),
+            "reference": run(base, "reference", request.param, engine="reference", **hooks)}
 
 
 def test_hooks_change_the_solution(hooked):
