@@ -65,7 +65,11 @@ def test_iterative_gives_the_direct_answers(config, overrides, tmp_path):
              for i, d in zip(iterative["steps"], direct["steps"])]
     assert all(0 <= e <= 2 for e in extra), extra
     # ... and that update's Krylov solve starts below its target or near it
-    assert iterative["steps"][-1]["krylov_iterations"] <= 30
+    # (not a cold start: 50-120); AMG, built for P1 operators, takes ~1.4x
+    # the iterations at P2 (docs/benchmarks.md, 12-15 per Newton iteration
+    # against 10-11; 31 measured here on Debian 13)
+    degree2 = "elements.degree=2" in overrides
+    assert iterative["steps"][-1]["krylov_iterations"] <= (42 if degree2 else 30)
     assert iterative["timing"]["linear_solver"] == "iterative"
     # a step's contact change keeps the preconditioner (lagged), J
     # unchanged keeps it outright
