@@ -82,29 +82,31 @@ def declare(cell_name, shapes, degrees=(1, 1)):
     return objects, constants
 
 
-def data(d, manufactured_run):
+def data(d, manufactured_run, axisymmetric=False):
     """The Constants of every group, by group: shared, material, load."""
     shared = {**pf.shared_data(d), **(mms.shared_data() if manufactured_run else {})}
-    material = pf.material_data(d)
+    material = pf.material_data(d, axisymmetric)
     # a material is constant in time (the core scales shared and boundary data)
     assert not any(datum.timed for datum in material.values()), "a timed material datum"
     return {"shared": shared, "material": material, "load": pf.load_data(d)}
 
 
-def compiled(cell_name, variant=None, degrees=(1, 1)):
+def compiled(cell_name, variant=None, degrees=(1, 1), axisymmetric=False):
     """What ffcx compiles for a variant (None: the model): {name: form} and
     {name: (expression, reference points)}, every term of the catalogue the
     variant defines, on its piece (dx(1), ds(1): the core marks the piece
     with 1), and for the model the Jacobian of each residual term (its
-    derivative), with {Jacobian's name: "J" or "J_state"}."""
+    derivative), with {Jacobian's name: "J" or "J_state"}. `axisymmetric`:
+    the axisymmetric formulation of a triangle mesh."""
     d = DIMENSION[cell_name]
-    groups = data(d, variant == "manufactured")
+    assert d == 2 or not axisymmetric, "axisymmetry is a formulation of 2D meshes"
+    groups = data(d, variant == "manufactured", axisymmetric)
     objects, constants = declare(cell_name, {name: datum.shape for group in groups.values()
                                              for name, datum in group.items()}, degrees)
     mesh, W = objects["mesh"], objects["W"]
     by_group = {g: {name: constants[name] for name in group} for g, group in groups.items()}
     c = terms.Context(objects["x"], objects["x_prev"], ufl.TestFunction(W), by_group["shared"],
-                      q=ufl.TestFunction(objects["P"]))
+                      q=ufl.TestFunction(objects["P"]), kin=pf.Kinematics(axisymmetric))
     dx_trial = ufl.TrialFunction(W)
     dx, ds = ufl.Measure("dx", domain=mesh), ufl.Measure("ds", domain=mesh)
     measure = {"region": dx(1), "boundary": ds(1), "contact": ds(1), "electrode": ds(1),
@@ -124,9 +126,10 @@ def compiled(cell_name, variant=None, degrees=(1, 1)):
     return objects, constants, forms, expressions, jacobians
 
 
-def entry(cell_name, variant=None, degrees=(1, 1)):
+def entry(cell_name, variant=None, degrees=(1, 1), axisymmetric=False):
     """The namespace of a .ufl file: every object by name, and the lists of
     what ffcx compiles."""
-    objects, constants, forms, expressions, _ = compiled(cell_name, variant, degrees)
+    objects, constants, forms, expressions, _ = compiled(cell_name, variant, degrees,
+                                                         axisymmetric)
     return {**objects, **constants, **forms, **{n: e for n, (e, _) in expressions.items()},
             "forms": list(forms.values()), "expressions": list(expressions.values())}

@@ -59,11 +59,22 @@ def shared_data():
     }
 
 
-def space_profile(X, data):
+def space_profile(X, data, axisymmetric=False):
     """U(x), Phi(x): linear, plus the smooth part when space_smooth = 1, or
     a quadratic part (bending of the body: u_y ~ x^2, and a potential
-    quadratic through the thickness) when space_quadratic = 1."""
+    quadratic through the thickness) when space_quadratic = 1. In
+    axisymmetry (x = r) the radial displacement vanishes on the axis, as
+    the formulation imposes: the terms of U_x that do not are left out."""
     s, q, pi, sin, cos = data["space_smooth"], data["space_quadratic"], ufl.pi, ufl.sin, ufl.cos
+    if axisymmetric:
+        x, y = X[0], X[1]
+        U = (ufl.as_vector([0.5 * x, 0.5 - x + 0.3 * y])
+             + s * ufl.as_vector([0.5 * sin(pi * x) * cos(pi * y),
+                                  0.3 * cos(pi * x) * sin(pi * y) - 0.2 * sin(pi * x)])
+             + q * ufl.as_vector([-0.6 * x * y, 0.3 * x * x - 0.2 * x * y]))
+        Phi = (0.3 + 0.5 * x - 0.4 * y + s * 0.5 * sin(pi * x) * cos(pi * y)
+               + q * (0.4 * y * y - 0.3 * x * y + 0.2 * x * x))
+        return U, Phi
     if X.ufl_shape[0] == 2:
         x, y = X[0], X[1]
         U = (ufl.as_vector([0.5 * x + 0.25 * y, 0.5 - x + 0.3 * y])
@@ -93,63 +104,67 @@ def time_profile(t, data):
     return (1 - s) * t + s * ufl.sin(ufl.pi * t / 2)
 
 
-def exact_solution(mesh, data):
+def exact_solution(mesh, data, kin=pf.CARTESIAN):
     """(u, phi, du/dt) of the exact solution at time data["t"]."""
     t = ufl.variable(data["t"])
     theta = time_profile(t, data)
-    U, Phi = space_profile(ufl.SpatialCoordinate(mesh), data)
+    U, Phi = space_profile(ufl.SpatialCoordinate(mesh), data, kin.axisymmetric)
     u = U0 * theta * U
     return u, PHI0 * theta * Phi, ufl.diff(u, t)
 
 
-def _exact_fields(mesh, mat, data):
-    u, phi, u_dot = exact_solution(mesh, data)
-    return u, pf.voigt_to_tensor(pf.stress_voigt(u, u_dot, phi, mat)), pf.electric_displacement(u, phi, mat)
+def _exact_fields(mesh, mat, data, kin):
+    u, phi, u_dot = exact_solution(mesh, data, kin)
+    sigma = kin.tensor(pf.stress_voigt(u, u_dot, phi, mat, kin))
+    return u, sigma, pf.electric_displacement(u, phi, mat, kin)
 
 
-def body_loads(y, dx, mat, data):
-    """Body force -div sigma and charge div D of the exact solution."""
+def body_loads(y, dx, mat, data, kin=pf.CARTESIAN):
+    """Body force -div sigma and charge div D of the exact solution (the
+    divergences of the formulation's coordinates)."""
     w, psi = ufl.split(y)
-    _, sigma, D = _exact_fields(y.ufl_domain(), mat, data)
+    _, sigma, D = _exact_fields(y.ufl_domain(), mat, data, kin)
     dxq = dx(degree=quadrature_degree(y))
-    return ufl.inner(-ufl.div(sigma), w) * dxq + ufl.div(D) * psi * dxq
+    return ufl.inner(-kin.div(sigma), w) * dxq + kin.div(D) * psi * dxq
 
 
-def exterior_loads(y, ds, mat, data):
+def exterior_loads(y, ds, mat, data, kin=pf.CARTESIAN):
     """Traction sigma n and surface charge -D.n of the exact solution on the
     exterior facets of ds."""
     w, psi = ufl.split(y)
     n = ufl.FacetNormal(y.ufl_domain())
-    _, sigma, D = _exact_fields(y.ufl_domain(), mat, data)
+    _, sigma, D = _exact_fields(y.ufl_domain(), mat, data, kin)
     dsq = ds(degree=quadrature_degree(y))
-    return ufl.inner(ufl.dot(sigma, n), w) * dsq - ufl.dot(D, n) * psi * dsq
+    return ufl.inner(ufl.dot(kin.in_plane(sigma), n), w) * dsq - ufl.dot(D, n) * psi * dsq
 
 
-def contact_loads(y, ds, data, law=pf.p):
+def contact_loads(y, ds, data, law=pf.p, kin=pf.CARTESIAN):
     """The foundation's pressure at the exact solution, on the contact facets."""
     w, _ = ufl.split(y)
-    u, _, _ = exact_solution(y.ufl_domain(), data)
+    u, _, _ = exact_solution(y.ufl_domain(), data, kin)
     dsq = ds(degree=pf.contact_quadrature_degree(y))
     return pf.contact_term(u, w, ufl.FacetNormal(y.ufl_domain()), dsq, data, law)
 
 
-def region_residual(x, x_prev, y, dx, mat, data):
+def region_residual(x, x_prev, y, dx, mat, data, kin=pf.CARTESIAN):
     """piezo_forms' bulk term with the body loads of the exact solution."""
-    return pf.region_residual(x, x_prev, y, dx, mat, data) - body_loads(y, dx, mat, data)
+    return (pf.region_residual(x, x_prev, y, dx, mat, data, kin)
+            - body_loads(y, dx, mat, data, kin))
 
 
-def contact_residual(x, y, ds, data, law=pf.p):
+def contact_residual(x, y, ds, data, law=pf.p, kin=pf.CARTESIAN):
     """piezo_forms' contact term minus the exact solution's contact load."""
-    return pf.contact_residual(x, y, ds, data, law) - contact_loads(y, ds, data, law)
+    return pf.contact_residual(x, y, ds, data, law) - contact_loads(y, ds, data, law, kin)
 
 
-def squared_errors(x, data):
-    """Squared L2 and H1 norms of u_h - u and phi_h - phi (cell integrals;
-    the drivers sum them over ranks and take the root)."""
+def squared_errors(x, dx, data, kin=pf.CARTESIAN):
+    """Squared L2 and H1 norms of u_h - u and phi_h - phi (cell integrals
+    over dx, the formulation's measure; the drivers sum them over ranks and
+    take the root)."""
     mesh = x.ufl_domain()
-    dx = ufl.dx(domain=mesh, degree=quadrature_degree(x))
+    dx = dx(degree=quadrature_degree(x))
     u_h, phi_h = ufl.split(x)
-    u, phi, _ = exact_solution(mesh, data)
+    u, phi, _ = exact_solution(mesh, data, kin)
     forms = {}
     for name, e in (("u", u_h - u), ("phi", phi_h - phi)):
         l2 = ufl.inner(e, e) * dx

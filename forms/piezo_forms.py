@@ -43,9 +43,10 @@ def contact_quadrature_degree(x):
     return 2 * degrees(x)[0]
 
 
-def voigt_size(d):
-    """Length of a Voigt strain vector in d dimensions."""
-    return {2: 3, 3: 6}[d]
+def voigt_size(d, axisymmetric=False):
+    """Length of a Voigt strain vector in d dimensions (4 in axisymmetry:
+    the hoop strain joins the three in-plane ones)."""
+    return 4 if axisymmetric else {2: 3, 3: 6}[d]
 
 
 def p(r, c_p):
@@ -53,26 +54,112 @@ def p(r, c_p):
     return c_p * ufl.max_value(r, 0)
 
 
-# Voigt index pairs: [xx, yy, xy] in 2D (plane strain), [xx, yy, zz, yz, xz,
-# xy] in 3D, engineering shears (2 eps_ij) in the strain vector
+# Voigt index pairs of the 3D frame: [xx, yy, xy] in 2D (plane strain and
+# stress), [xx, yy, zz, yz, xz, xy] in 3D, [xx, yy, zz, xy] in axisymmetry
+# (x = r, y the axis, z the hoop direction), engineering shears (2 eps_ij)
+# in the strain vector
 VOIGT_PAIRS = {2: [(0, 0), (1, 1), (0, 1)],
-               3: [(0, 0), (1, 1), (2, 2), (1, 2), (0, 2), (0, 1)]}
+               3: [(0, 0), (1, 1), (2, 2), (1, 2), (0, 2), (0, 1)],
+               "axisymmetric": [(0, 0), (1, 1), (2, 2), (0, 1)]}
 
 
-def strain_voigt(v):
+class Kinematics:
+    """What a formulation changes in the forms: the strain and the measure.
+    Cartesian (3D, and 2D in plane strain or stress: those two differ only
+    in how the material is reduced, config layer) or axisymmetric: the mesh
+    is the (r, z) half-plane x = r >= 0, y the axis; the strain carries the
+    hoop term u_r / r, and every integral the weight 2 pi r (results per
+    full revolution)."""
+
+    def __init__(self, axisymmetric=False):
+        self.axisymmetric = axisymmetric
+
+    def pairs(self, d):
+        return VOIGT_PAIRS["axisymmetric" if self.axisymmetric else d]
+
+    def hoop(self, v):
+        """u_r / r; 0 on the axis, where the weight r is 0 too (facet
+        quadrature points lie there)."""
+        r = ufl.SpatialCoordinate(_domain(v))[0]
+        return ufl.conditional(ufl.gt(r, 0), v[0] / r, 0)
+
+    def strain(self, v):
+        """Voigt strain of a displacement v (engineering shears)."""
+        eps = ufl.sym(ufl.grad(v))
+        return ufl.as_vector([self.hoop(v) if (i, j) == (2, 2) and self.axisymmetric
+                              else eps[i, j] if i == j else 2 * eps[i, j]
+                              for i, j in self.pairs(v.ufl_shape[0])])
+
+    def tensor(self, s):
+        """The symmetric tensor of a Voigt stress s (3 x 3 in axisymmetry,
+        the hoop entry on the diagonal)."""
+        d = 3 if self.axisymmetric else {3: 2, 6: 3}[s.ufl_shape[0]]
+        entry = {(i, j): 0 for i in range(d) for j in range(d)}
+        for a, (i, j) in enumerate(self.pairs(2 if self.axisymmetric else d)):
+            entry[i, j] = entry[j, i] = s[a]
+        return ufl.as_matrix([[entry[i, j] for j in range(d)] for i in range(d)])
+
+    def weight(self, domain):
+        """The weight of every integral: 2 pi r, or None (Cartesian)."""
+        return 2 * ufl.pi * ufl.SpatialCoordinate(domain)[0] if self.axisymmetric else None
+
+    def measure(self, m):
+        """m, weighted by the formulation (every term integrates with it)."""
+        if not self.axisymmetric:
+            return m
+        return Weighted(m, self.weight(m.ufl_domain()))
+
+    def div(self, T):
+        """Divergence of a tensor (3 x 3 in axisymmetry) or vector field in
+        the formulation's coordinates: its in-plane components (r, z)."""
+        if not self.axisymmetric:
+            return ufl.div(T)
+        r = ufl.SpatialCoordinate(_domain(T))[0]
+        if T.ufl_shape == (2,):
+            return ufl.div(T) + T[0] / r
+        in_plane = ufl.as_matrix([[T[i, j] for j in range(2)] for i in range(2)])
+        return ufl.div(in_plane) + ufl.as_vector([(T[0, 0] - T[2, 2]) / r, T[0, 1] / r])
+
+    def in_plane(self, T):
+        """The (r, z) block of a 3 x 3 tensor, T itself otherwise."""
+        if not self.axisymmetric:
+            return T
+        return ufl.as_matrix([[T[i, j] for j in range(2)] for i in range(2)])
+
+
+CARTESIAN = Kinematics()
+
+
+class Weighted:
+    """A measure whose integrands are multiplied by a weight: `f * m` is
+    (w f) dm, and m(degree=..) keeps the weight."""
+
+    def __init__(self, measure, weight):
+        self.measure, self.weight = measure, weight
+
+    def __rmul__(self, integrand):
+        return (self.weight * integrand) * self.measure
+
+    def __call__(self, *args, **kwargs):
+        return Weighted(self.measure(*args, **kwargs), self.weight)
+
+    def ufl_domain(self):
+        return self.measure.ufl_domain()
+
+
+def _domain(expr):
+    """The mesh of a UFL expression."""
+    return ufl.domain.extract_unique_domain(expr)
+
+
+def strain_voigt(v, kin=CARTESIAN):
     """Voigt strain of a displacement v (engineering shears)."""
-    eps = ufl.sym(ufl.grad(v))
-    return ufl.as_vector([eps[i, j] if i == j else 2 * eps[i, j]
-                          for i, j in VOIGT_PAIRS[v.ufl_shape[0]]])
+    return kin.strain(v)
 
 
-def voigt_to_tensor(s):
-    """The symmetric d x d tensor of a Voigt stress s."""
-    d = {3: 2, 6: 3}[s.ufl_shape[0]]
-    entry = {}
-    for a, (i, j) in enumerate(VOIGT_PAIRS[d]):
-        entry[i, j] = entry[j, i] = s[a]
-    return ufl.as_matrix([[entry[i, j] for j in range(d)] for i in range(d)])
+def voigt_to_tensor(s, kin=CARTESIAN):
+    """The symmetric tensor of a Voigt stress s."""
+    return kin.tensor(s)
 
 
 def velocity(u, u_prev, data):
@@ -80,16 +167,17 @@ def velocity(u, u_prev, data):
     return (u - u_prev) / data["k"]
 
 
-def stress_voigt(u, u_dot, phi, mat):
+def stress_voigt(u, u_dot, phi, mat, kin=CARTESIAN):
     """Total stress (2.1) in Voigt form: Bv s(u) + Av s(u_dot) + e^T grad phi,
     u_dot the velocity, mat a region's material."""
-    return (ufl.dot(mat["Bv"], strain_voigt(u)) + ufl.dot(mat["Av"], strain_voigt(u_dot))
+    return (ufl.dot(mat["Bv"], kin.strain(u)) + ufl.dot(mat["Av"], kin.strain(u_dot))
             + ufl.dot(ufl.transpose(mat["e"]), ufl.grad(phi)))
 
 
-def electric_displacement(u, phi, mat):
-    """Electric displacement (2.2): D = e s(u) - beta grad phi."""
-    return ufl.dot(mat["e"], strain_voigt(u)) - ufl.dot(mat["beta"], ufl.grad(phi))
+def electric_displacement(u, phi, mat, kin=CARTESIAN):
+    """Electric displacement (2.2): D = e s(u) - beta grad phi (in
+    axisymmetry its (r, z) components: the hoop field is zero)."""
+    return ufl.dot(mat["e"], kin.strain(u)) - ufl.dot(mat["beta"], ufl.grad(phi))
 
 
 def gap_function(u, n, data):
@@ -102,7 +190,7 @@ def contact_pressure(u, n, data, law=p):
     return law(gap_function(u, n, data), data["c_p"])
 
 
-def region_residual(x, x_prev, y, dx, mat, data):
+def region_residual(x, x_prev, y, dx, mat, data, kin=CARTESIAN):
     """The bulk of (3.3)-(3.4) on one region (dx: its cells) with its
     material: viscous + elastic + piezoelectric stress against the strain of
     the test function, permittivity - coupling against grad psi (with the
@@ -110,9 +198,9 @@ def region_residual(x, x_prev, y, dx, mat, data):
     u, phi = ufl.split(x)
     u_prev, _ = ufl.split(x_prev)
     w, psi = ufl.split(y)
-    F = ufl.inner(stress_voigt(u, velocity(u, u_prev, data), phi, mat), strain_voigt(w)) * dx
+    F = ufl.inner(stress_voigt(u, velocity(u, u_prev, data), phi, mat, kin), kin.strain(w)) * dx
     F += ufl.inner(ufl.dot(mat["beta"], ufl.grad(phi)), ufl.grad(psi)) * dx
-    F -= ufl.inner(ufl.dot(mat["e"], strain_voigt(u)), ufl.grad(psi)) * dx
+    F -= ufl.inner(ufl.dot(mat["e"], kin.strain(u)), ufl.grad(psi)) * dx
     return F - body_loads(y, dx, data)
 
 
@@ -176,13 +264,13 @@ def contact_force(x, ds, data, i, law=p):
     return -contact_pressure(u, n, data, law) * n[i] * ds(degree=contact_quadrature_degree(x))
 
 
-def electrode_charge(x, ds, mat):
+def electrode_charge(x, ds, mat, kin=CARTESIAN):
     """Charge of an electrode, int D . nu over its facets that bound cells of
     one material (ds: those facets), nu outward: C/m per unit thickness in
     2D, C in 3D."""
     u, phi = ufl.split(x)
     n = ufl.FacetNormal(x.ufl_domain())
-    return ufl.dot(electric_displacement(u, phi, mat), n) * ds
+    return ufl.dot(electric_displacement(u, phi, mat, kin), n) * ds
 
 
 def contact_pressure_moments(x, q, ds, data, law=p):
@@ -220,9 +308,9 @@ def shared_data(d):
     }
 
 
-def material_data(d):
+def material_data(d, axisymmetric=False):
     """The Constants of one region's material (Voigt, see VOIGT_PAIRS)."""
-    m = voigt_size(d)
+    m = voigt_size(d, axisymmetric)
     return {
         "Bv": Datum((m, m), "elastic"),          # elastic tensor (Pa)
         "Av": Datum((m, m), "viscosity"),        # viscosity tensor (Pa s)

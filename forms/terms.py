@@ -62,15 +62,20 @@ class Term:
 
 
 class Context:
-    """What a term is built from (see the module's docstring)."""
+    """What a term is built from (see the module's docstring); `kin`: the
+    formulation's kinematics (piezo_forms.Kinematics), whose weight every
+    measure of a piece carries."""
 
-    def __init__(self, x, x_prev, y, data, m=None, mat=None, load=None, law=pf.p, q=None):
+    def __init__(self, x, x_prev, y, data, m=None, mat=None, load=None, law=pf.p, q=None,
+                 kin=pf.CARTESIAN):
         self.x, self.x_prev, self.y, self.data = x, x_prev, y, data
         self.m, self.mat, self.load, self.law, self.q = m, mat, load, law, q
+        self.kin = kin
 
     def on(self, m, mat=None, load=None):
-        """The same context on another piece."""
-        return Context(self.x, self.x_prev, self.y, self.data, m, mat, load, self.law, self.q)
+        """The same context on another piece (m: its unweighted measure)."""
+        return Context(self.x, self.x_prev, self.y, self.data, self.kin.measure(m), mat, load,
+                       self.law, self.q, self.kin)
 
     @property
     def fields(self):
@@ -92,15 +97,15 @@ def model(d):
     """The terms of the model in d dimensions, in the order they are summed."""
     def stress(c):
         u, phi, u_prev = c.fields
-        return pf.stress_voigt(u, pf.velocity(u, u_prev, c.data), phi, c.mat)
+        return pf.stress_voigt(u, pf.velocity(u, u_prev, c.data), phi, c.mat, c.kin)
 
     def electric_displacement(c):
         u, phi, _ = c.fields
-        return pf.electric_displacement(u, phi, c.mat)
+        return pf.electric_displacement(u, phi, c.mat, c.kin)
 
     return [
         Term("F_region", "region", "F",
-             lambda c: pf.region_residual(c.x, c.x_prev, c.y, c.m, c.mat, c.data)),
+             lambda c: pf.region_residual(c.x, c.x_prev, c.y, c.m, c.mat, c.data, c.kin)),
         Term("L_region", "region", "L", lambda c: pf.body_loads(c.y, c.m, c.data)),
         Term("F_boundary", "boundary", "F", lambda c: -pf.boundary_loads(c.y, c.m, c.load)),
         Term("L_boundary", "boundary", "L", lambda c: pf.boundary_loads(c.y, c.m, c.load)),
@@ -112,7 +117,7 @@ def model(d):
         Term("boundary_measure", "boundary", "output", lambda c: 1.0 * c.m,
              slot="boundary_measures"),
         Term("electrode_charge", "electrode", "output",
-             lambda c: pf.electrode_charge(c.x, c.m, c.mat), slot="electrode_charge"),
+             lambda c: pf.electrode_charge(c.x, c.m, c.mat, c.kin), slot="electrode_charge"),
         Term("contact_pressure_load", "contact", "output",
              lambda c: pf.contact_pressure_moments(c.x, c.q, c.m, c.data, c.law)[0],
              slot="contact_pressure_load", space="P"),
@@ -130,11 +135,11 @@ def model(d):
 
 
 def _squared_error(name):
-    return lambda c: mms.squared_errors(c.x, c.data)[name]
+    return lambda c: mms.squared_errors(c.x, c.m, c.data, c.kin)[name]
 
 
 def _exact(i):
-    return lambda c: mms.exact_solution(c.x.ufl_domain(), c.data)[i]
+    return lambda c: mms.exact_solution(c.x.ufl_domain(), c.data, c.kin)[i]
 
 
 def manufactured(d):
@@ -143,20 +148,20 @@ def manufactured(d):
     contact facets, and the exact fields and errors."""
     variant = "manufactured"
     replaced = {
-        "F_region": lambda c: mms.region_residual(c.x, c.x_prev, c.y, c.m, c.mat, c.data),
+        "F_region": lambda c: mms.region_residual(c.x, c.x_prev, c.y, c.m, c.mat, c.data, c.kin),
         "L_region": lambda c: (pf.body_loads(c.y, c.m, c.data)
-                               + mms.body_loads(c.y, c.m, c.mat, c.data)),
-        "F_contact": lambda c: mms.contact_residual(c.x, c.y, c.m, c.data, c.law),
+                               + mms.body_loads(c.y, c.m, c.mat, c.data, c.kin)),
+        "F_contact": lambda c: mms.contact_residual(c.x, c.y, c.m, c.data, c.law, c.kin),
     }
     added_after = {
         "L_region": [
             Term("F_exterior", "exterior", "F",
-                 lambda c: -mms.exterior_loads(c.y, c.m, c.mat, c.data), variant=variant),
+                 lambda c: -mms.exterior_loads(c.y, c.m, c.mat, c.data, c.kin), variant=variant),
             Term("L_exterior", "exterior", "L",
-                 lambda c: mms.exterior_loads(c.y, c.m, c.mat, c.data), variant=variant)],
+                 lambda c: mms.exterior_loads(c.y, c.m, c.mat, c.data, c.kin), variant=variant)],
         "F_contact": [
             Term("L_contact", "contact", "L",
-                 lambda c: mms.contact_loads(c.y, c.m, c.data, c.law), variant=variant)],
+                 lambda c: mms.contact_loads(c.y, c.m, c.data, c.law, c.kin), variant=variant)],
     }
     terms = []
     for t in model(d):

@@ -12,8 +12,10 @@ import entry_points as ep
 import terms
 
 CELL = {2: "triangle", 3: "tetrahedron"}
-# the ffcx file that holds a variant's kernels, by dimension
-PREFIX = {None: "piezo_contact_{d}d", "manufactured": "manufactured_{d}d"}
+# the kernel families: (dimension, axisymmetric) and the name of their files
+FAMILIES = {(2, False): "2d", (3, False): "3d", (2, True): "axi"}
+# the ffcx file that holds a variant's kernels, by family
+PREFIX = {None: "piezo_contact_{f}", "manufactured": "manufactured_{f}"}
 
 
 def suffix(degrees):
@@ -28,10 +30,10 @@ def files(degrees):
     return {v: p + suffix(degrees) for v, p in PREFIX.items()}
 
 
-def roles(d, manufactured_run, degrees):
+def roles(d, axisymmetric, manufactured_run, degrees):
     """(term, role, ffcx file, form name) in catalogue order, each Jacobian
     after the residual term it is the derivative of."""
-    jacobians = ep.compiled(CELL[d], degrees=degrees)[4]
+    jacobians = ep.compiled(CELL[d], degrees=degrees, axisymmetric=axisymmetric)[4]
     prefix = files(degrees)
     out = []
     for t in terms.catalogue(d, manufactured_run):
@@ -42,10 +44,10 @@ def roles(d, manufactured_run, degrees):
     return out
 
 
-def term_table(d, manufactured_run, degrees):
+def term_table(d, axisymmetric, manufactured_run, degrees):
     rows = []
-    for t, role, prefix, name in roles(d, manufactured_run, degrees):
-        p = prefix.format(d=d)
+    for t, role, prefix, name in roles(d, axisymmetric, manufactured_run, degrees):
+        p = prefix.format(f=FAMILIES[d, axisymmetric])
         kernel = (f"nullptr, expression_{p}_{name}" if t.expression
                   else f"form_{p}_{name}, nullptr")
         rows.append(f'{{"{name}", Piece::{t.piece}, Role::{role}, "{t.slot or ""}", '
@@ -53,8 +55,8 @@ def term_table(d, manufactured_run, degrees):
     return "{" + ",\n          ".join(rows) + "}"
 
 
-def data_table(d, manufactured_run, degrees=None):
-    groups = ep.data(d, manufactured_run)
+def data_table(d, axisymmetric, manufactured_run, degrees=None):
+    groups = ep.data(d, manufactured_run, axisymmetric)
     rows = []
     for group, data in groups.items():
         for name, datum in data.items():
@@ -68,10 +70,11 @@ def by_case(table, per_degree=True):
     cases = []
     for degrees in ep.COMPILED_DEGREES if per_degree else [None]:
         when = f" and degrees == Degrees{{{degrees[0]}, {degrees[1]}}}" if degrees else ""
-        for d in (2, 3):
+        for d, axi in FAMILIES:
             for m in (False, True):
-                cases.append(f"  if (d == {d} and manufactured == {'true' if m else 'false'}"
-                             f"{when})\n    return {table(d, m, degrees)};")
+                cases.append(f"  if (d == {d} and axisymmetric == {'true' if axi else 'false'}"
+                             f" and manufactured == {'true' if m else 'false'}"
+                             f"{when})\n    return {table(d, axi, m, degrees)};")
     return "\n".join(cases)
 
 
@@ -80,8 +83,8 @@ def space_factories():
     0.5 builds its spaces from them), by dimension and degrees."""
     cases = []
     for degrees in ep.COMPILED_DEGREES:
-        for d in (2, 3):
-            p = files(degrees)[None].format(d=d)
+        for d in (2, 3):  # the spaces of a 2D family are the same in every formulation
+            p = files(degrees)[None].format(f=FAMILIES[d, False])
             cases.append(f"  if (d == {d} and degrees == Degrees{{{degrees[0]}, {degrees[1]}}})\n"
                          f"    return {{PIEZO_UFCX_SPACE(functionspace_form_{p}_F_region), "
                          f"PIEZO_UFCX_SPACE(functionspace_form_{p}_contact_pressure_load)}};")
@@ -95,11 +98,11 @@ def carried():
 here = os.path.dirname(os.path.abspath(__file__))
 for degrees in ep.COMPILED_DEGREES:
     for p in files(degrees).values():
-        for d in (2, 3):
-            assert os.path.exists(os.path.join(here, p.format(d=d) + ".ufl")), \
-                f"entry_points.COMPILED_DEGREES has {degrees}: {p.format(d=d)}.ufl is missing"
-includes = "\n".join(f'#include "{p.format(d=d)}.h"' for degrees in ep.COMPILED_DEGREES
-                     for p in files(degrees).values() for d in (2, 3))
+        for f in FAMILIES.values():
+            assert os.path.exists(os.path.join(here, p.format(f=f) + ".ufl")), \
+                f"entry_points.COMPILED_DEGREES has {degrees}: {p.format(f=f)}.ufl is missing"
+includes = "\n".join(f'#include "{p.format(f=f)}.h"' for degrees in ep.COMPILED_DEGREES
+                     for p in files(degrees).values() for f in FAMILIES.values())
 header = f"""// Generated from forms/terms.py by forms/write_cpp_header.py: do not edit.
 #pragma once
 {includes}
@@ -151,9 +154,9 @@ using Degrees = std::array<int, 2>;
 /// The degrees compiled ahead of time
 inline std::vector<Degrees> carried() {{ return {{{carried()}}}; }}
 
-/// The terms of a run in d dimensions at some degrees, in the order they
-/// are summed
-inline std::vector<Term> catalogue(int d, bool manufactured, Degrees degrees)
+/// The terms of a run in d dimensions (axisymmetric or Cartesian) at some
+/// degrees, in the order they are summed
+inline std::vector<Term> catalogue(int d, bool axisymmetric, bool manufactured, Degrees degrees)
 {{
 {by_case(term_table)}
   throw std::invalid_argument("no kernels for d = " + std::to_string(d) + " at degrees "
@@ -170,7 +173,7 @@ space_factories(int d, Degrees degrees)
 }}
 
 /// The Constants of the forms (the same at every degree)
-inline std::vector<Datum> data(int d, bool manufactured)
+inline std::vector<Datum> data(int d, bool axisymmetric, bool manufactured)
 {{
 {by_case(data_table, per_degree=False)}
   throw std::invalid_argument("no kernels for d = " + std::to_string(d));

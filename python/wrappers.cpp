@@ -102,7 +102,8 @@ void declare_model(py::module_& m)
       .def_rw("contact", &ModelSpec::contact)
       .def_rw("electrodes", &ModelSpec::electrodes)
       .def_rw("boundary_keys", &ModelSpec::boundary_keys)
-      .def_rw("degrees", &ModelSpec::degrees);
+      .def_rw("degrees", &ModelSpec::degrees)
+      .def_rw("axisymmetric", &ModelSpec::axisymmetric);
 
   class_<ConstantSource>(m, "ConstantSource",
                          "Where a Constant's value comes from (model.h)")
@@ -123,6 +124,7 @@ void declare_model(py::module_& m)
   class_<Model>(m, "Model", "The dolfinx objects of a run (model.h)")
       .def(py::init<>())
       .def_rw("mesh", &Model::mesh)
+      .def_rw("axisymmetric", &Model::axisymmetric)
       .def_rw("W", &Model::W)
       .def_rw("P", &Model::P)
       .def_rw("x", &Model::x)

@@ -61,9 +61,10 @@ public:
   {
     const int d = named.mesh->geometry().dim();
     check_carried(spec.degrees);
-    const auto data = forms::data(d, spec.manufactured);
+    const auto data = forms::data(d, spec.axisymmetric, spec.manufactured);
     const auto [mixed, pressure] = forms::space_factories(d, spec.degrees);
     _m.mesh = named;
+    _m.axisymmetric = spec.axisymmetric;
     _m.W = compat::mixed_space(named.mesh, mixed, spec.degrees);
     _m.P = compat::pressure_space(named.mesh, pressure);
     _m.x = std::make_shared<fem::Function<double>>(_m.W);
@@ -88,7 +89,7 @@ public:
   Model build()
   {
     const int d = _named.mesh->geometry().dim();
-    for (const auto& term : forms::catalogue(d, _spec.manufactured, _spec.degrees))
+    for (const auto& term : forms::catalogue(d, _spec.axisymmetric, _spec.manufactured, _spec.degrees))
       for (const auto& piece : instances(term))
         place(term, piece);
     return std::move(_m);

@@ -118,6 +118,36 @@ std::size_t size_in(const json& size, int d)
   return size.get<std::size_t>();
 }
 
+/// The lengths a vector may have in d dimensions (0: not known yet):
+/// "frame" is a direction of the 3D frame, which a 2D mesh may give in its
+/// plane (2 components) or in full (3: z out of the plane, the hoop
+/// direction in axisymmetry)
+std::vector<std::size_t> lengths_in(const json& length, int d)
+{
+  std::vector<std::size_t> out;
+  for (int dd : dimensions(d))
+    for (std::size_t n : length == "frame" ? std::vector<std::size_t>{std::size_t(dd), 3}
+                                           : std::vector<std::size_t>{size_in(length, dd)})
+      if (std::find(out.begin(), out.end(), n) == out.end())
+        out.push_back(n);
+  return out;
+}
+
+/// The (vector dimension, Voigt length) pairs a material tensor may have
+/// in d dimensions: the reduced shapes of the 2D formulations (plane 3,
+/// axisymmetric 4 strains) and the 3D shape
+std::vector<std::pair<int, std::size_t>> frames(int d)
+{
+  std::vector<std::pair<int, std::size_t>> out;
+  for (int dd : dimensions(d))
+  {
+    if (dd == 2)
+      out.insert(out.end(), {{2, 3}, {2, 4}});
+    out.push_back({3, 6});
+  }
+  return out;
+}
+
 std::string either(const std::vector<std::string>& options)
 {
   std::string out;
@@ -333,9 +363,8 @@ struct Check
       return given > 0;
     };
     std::vector<std::string> options;
-    for (int dd : dimensions(d))
+    for (std::size_t n : lengths_in(rule["length"], d))
     {
-      const std::size_t n = size_in(rule["length"], dd);
       if (fits(n))
       {
         for (std::size_t i = 0; i < n; ++i)
@@ -350,12 +379,19 @@ struct Check
           + (rule["length"] == "d" ? d ? " (the mesh is " + std::to_string(d) + "D)" : " (2D or 3D)" : ""));
   }
 
+  /// In 2D a material tensor has a reduced shape (plane: 3 strains,
+  /// axisymmetric: 4) or its 3D shape, which the formulation reduces
+  /// (check_formulation narrows it down once the formulation is known)
   json matrix() const
   {
     std::vector<std::string> options;
-    for (int dd : dimensions(d))
+    for (const auto& [dd, strains] : frames(d))
     {
-      const std::size_t r = size_in(rule["shape"][0], dd), c = size_in(rule["shape"][1], dd);
+      const auto size = [&](const json& s) { return s == "voigt" ? strains : size_in(s, dd); };
+      const std::size_t r = size(rule["shape"][0]), c = size(rule["shape"][1]);
+      if (std::find(options.begin(), options.end(),
+                    std::to_string(r) + "x" + std::to_string(c)) != options.end())
+        continue;
       if (value.is_array() and value.size() == r
           and std::all_of(value.begin(), value.end(),
                           [c](const json& row) { return is_number_list(row, c); }))
@@ -848,9 +884,69 @@ json configure(json cfg, const std::vector<std::string>& overrides,
   return cfg;
 }
 
-json check_dimension(const json& cfg, int d, const std::string& source)
+namespace
 {
-  return check(cfg, schema(), "", source, d);
+/// The Voigt length of a material's tensors (elastic's; 3D 6, plane 3,
+/// axisymmetric 4) and their vector dimension, each tensor checked against
+/// it: one material, one shape
+std::pair<std::size_t, std::size_t> material_shape(const json& mat, const std::string& path,
+                                                   const std::string& source)
+{
+  const std::size_t strains = mat["elastic"].size(), dim = strains == 6 ? 3 : 2;
+  const auto shape = [](const json& m)
+  { return std::to_string(m.size()) + "x" + std::to_string(m[0].size()); };
+  const std::map<std::string, std::pair<std::size_t, std::size_t>> expected = {
+      {"viscosity", {strains, strains}},
+      {"piezoelectric", {dim, strains}},
+      {"permittivity", {dim, dim}}};
+  for (const auto& [key, rc] : expected)
+    if (mat.contains(key) and (mat[key].size() != rc.first or mat[key][0].size() != rc.second))
+      fail(source, join(path, key) + ": a " + shape(mat[key]) + " matrix with a "
+                       + shape(mat["elastic"]) + " elastic tensor: one material's tensors "
+                       + "have one shape (" + std::to_string(rc.first) + "x"
+                       + std::to_string(rc.second) + " here)");
+  return {strains, dim};
+}
+
+/// The formulation of a 2D mesh, and the shapes it takes for explicit
+/// tensors: its reduced shape or the 3D one (which it reduces)
+void check_formulation_of_materials(const json& cfg, const std::string& source)
+{
+  const std::string f = cfg["formulation"];
+  const std::size_t reduced = f == "axisymmetric" ? 4 : 3;
+  const auto check_one = [&](const json& mat, const std::string& path)
+  {
+    if (!mat.contains("elastic"))
+      return;
+    const auto [strains, _] = material_shape(mat, path, source);
+    if (strains != reduced and strains != 6)
+      fail(source, join(path, "elastic") + ": a " + std::to_string(strains) + "x"
+                       + std::to_string(strains) + " matrix does not fit the " + f + " formulation: it takes "
+                       + std::to_string(reduced) + "x" + std::to_string(reduced)
+                       + " (reduced) or 6x6 (the 3D tensor, reduced by the formulation)");
+  };
+  if (cfg.contains("material"))
+    check_one(cfg["material"], "material");
+  if (cfg.contains("regions"))
+    for (const auto& [name, mat] : cfg["regions"].items())
+      check_one(mat, "regions." + name);
+}
+} // namespace
+
+json check_dimension(const json& cfg_, int d, const std::string& source)
+{
+  json cfg = check(cfg_, schema(), "", source, d);
+  if (d == 3)
+  {
+    if (cfg.contains("formulation"))
+      fail(source, "formulation: " + fmt(cfg["formulation"])
+                       + ": a formulation of 2D meshes (the mesh is 3D)");
+    return cfg;
+  }
+  if (!cfg.contains("formulation"))
+    cfg["formulation"] = "plane_strain";
+  check_formulation_of_materials(cfg, source);
+  return cfg;
 }
 
 void bcast_error(std::string& error, MPI_Comm comm)
@@ -930,6 +1026,7 @@ ModelSpec model_spec(const json& cfg)
 {
   ModelSpec spec;
   spec.manufactured = cfg.contains("manufactured");
+  spec.axisymmetric = cfg.value("formulation", "") == "axisymmetric";
   // (a summary written before "elements" existed has none: degree 1)
   const json elements = cfg.contains("elements") ? cfg["elements"] : json::object();
   const int degree = elements.value("degree", 1);

@@ -59,6 +59,30 @@ void check_every_rank_has_cells(const NamedMesh& mesh, MPI_Comm comm, const std:
                         "(dolfinx 0.5 cannot collapse a space there): use a finer mesh or "
                         "fewer processes");
 }
+
+/// An axisymmetric mesh lies in the half-plane x = r >= 0 (its points on
+/// the axis may be off by round-off)
+void check_half_plane(const json& cfg, const NamedMesh& mesh, MPI_Comm comm,
+                      const std::string& source)
+{
+  if (cfg.value("formulation", "") != "axisymmetric")
+    return;
+  const auto& geometry = mesh.mesh->geometry();
+  const double* x = geometry.x().data(); // (num_nodes, 3), row-major
+  const std::size_t n = geometry.x().size();
+  double range[2] = {0.0, 0.0}; // -min x, max |coordinate|
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    range[1] = std::max(range[1], std::abs(x[i]));
+    if (i % 3 == 0)
+      range[0] = std::max(range[0], -x[i]);
+  }
+  MPI_Allreduce(MPI_IN_PLACE, range, 2, MPI_DOUBLE, MPI_MAX, comm);
+  if (range[0] > 1e-12 * range[1])
+    throw ConfigError(printable(source, 200) + ": formulation: axisymmetric: the mesh has "
+                      + "points at x = r < 0 (down to " + printable(json(-range[0]))
+                      + " m): an axisymmetric mesh lies in the half-plane x >= 0, y the axis");
+}
 } // namespace
 
 /// The summary.json of an interrupted or failed run in DIR, to continue it,
@@ -191,7 +215,8 @@ json run_config(const RunRequest& request, MPI_Comm comm, const ModelFactory& ma
   const json checked = check_dimension(request.cfg, d, request.source);
   check_names(checked, mesh, request.source);
   // from here on, every material is its tensors in the mesh frame
-  const json cfg = resolve_materials(checked, d);
+  check_half_plane(checked, mesh, comm, request.source);
+  const json cfg = resolve_materials(checked, d, request.source);
   const ModelSpec spec = model_spec(cfg);
   Model model = model_of(make_model, mesh, spec, request.source);
   set_constants(cfg, model);

@@ -1,4 +1,5 @@
 #include "materials.h"
+#include "json_input.h"
 #include "schema.h"
 
 #include <cmath>
@@ -159,55 +160,192 @@ MaterialTensors rotate(const MaterialTensors& m, const Rotation& R)
   return out;
 }
 
-MaterialTensors plane_strain(const MaterialTensors& m)
+namespace
 {
-  const int strains[3] = {0, 1, 5}; // xx, yy, xy
-  MaterialTensors out{zeros(3, 3), zeros(3, 3), zeros(2, 3), zeros(2, 2)};
-  for (int I = 0; I < 3; ++I)
-    for (int J = 0; J < 3; ++J)
+/// The rows and columns `strains` (Voigt) and `fields` of 3D tensors
+MaterialTensors restricted(const MaterialTensors& m, const std::vector<int>& strains,
+                           const std::vector<int>& fields)
+{
+  const std::size_t ns = strains.size(), nf = fields.size();
+  MaterialTensors out{zeros(ns, ns), zeros(ns, ns), zeros(nf, ns), zeros(nf, nf)};
+  for (std::size_t I = 0; I < ns; ++I)
+    for (std::size_t J = 0; J < ns; ++J)
     {
       out.elastic[I][J] = m.elastic[strains[I]][strains[J]];
       out.viscosity[I][J] = m.viscosity[strains[I]][strains[J]];
     }
-  for (int i = 0; i < 2; ++i)
+  for (std::size_t i = 0; i < nf; ++i)
   {
-    for (int J = 0; J < 3; ++J)
-      out.piezoelectric[i][J] = m.piezoelectric[i][strains[J]];
-    for (int j = 0; j < 2; ++j)
-      out.permittivity[i][j] = m.permittivity[i][j];
+    for (std::size_t J = 0; J < ns; ++J)
+      out.piezoelectric[i][J] = m.piezoelectric[fields[i]][strains[J]];
+    for (std::size_t j = 0; j < nf; ++j)
+      out.permittivity[i][j] = m.permittivity[fields[i]][fields[j]];
   }
   return out;
 }
 
-json resolve_material(const json& spec, int d)
+/// The inverse of a small symmetric positive definite matrix (Gauss-Jordan);
+/// throws std::invalid_argument if it is singular
+Matrix inverse(Matrix a)
 {
-  if (spec.contains("elastic")) // explicit, in the mesh frame
+  const std::size_t n = a.size();
+  Matrix inv = zeros(n, n);
+  for (std::size_t i = 0; i < n; ++i)
+    inv[i][i] = 1.0;
+  double largest = 0.0;
+  for (const auto& row : a)
+    for (double x : row)
+      largest = std::max(largest, std::abs(x));
+  for (std::size_t c = 0; c < n; ++c)
   {
-    json out = spec;
-    if (!spec.contains("viscosity"))
+    std::size_t pivot = c;
+    for (std::size_t r = c + 1; r < n; ++r)
+      if (std::abs(a[r][c]) > std::abs(a[pivot][c]))
+        pivot = r;
+    if (!(std::abs(a[pivot][c]) > 1e-12 * largest))
+      throw std::invalid_argument("singular");
+    std::swap(a[c], a[pivot]);
+    std::swap(inv[c], inv[pivot]);
+    const double p = a[c][c];
+    for (std::size_t j = 0; j < n; ++j)
     {
-      // the viscosity it means, and where it came from (a resolved
-      // material validates as it is: a resumed run reads it back)
-      Matrix A = spec["elastic"].get<Matrix>();
-      for (auto& row : A)
-        for (double& x : row)
-          x = decimal(x * spec["relaxation_time"].get<double>());
-      out["viscosity"] = A;
-      out.erase("relaxation_time");
-      out["resolved_from"] = {{"relaxation_time", spec["relaxation_time"]}};
+      a[c][j] /= p;
+      inv[c][j] /= p;
     }
-    return out;
+    for (std::size_t r = 0; r < n; ++r)
+      if (r != c and a[r][c] != 0.0)
+      {
+        const double f = a[r][c];
+        for (std::size_t j = 0; j < n; ++j)
+        {
+          a[r][j] -= f * a[c][j];
+          inv[r][j] -= f * inv[c][j];
+        }
+      }
   }
-  const double tau
-      = spec.value("relaxation_time", presets()["relaxation_time"].get<double>());
-  MaterialTensors m = rotate(preset_tensors(spec["preset"], tau),
-                             spec.contains("euler")
-                                 ? euler_rotation(spec["euler"].get<std::vector<double>>())
-                                 : poling_rotation(spec["poling"].get<std::vector<double>>()));
-  if (d == 2)
-    m = plane_strain(m);
-  // exact zeros stay zeros: round-off of the rotation below 1e-14 of the
-  // largest entry is cleaned, so that the solved tensors read as the data
+  return inv;
+}
+
+/// Rows `rows` and columns `cols` of a matrix
+Matrix block(const Matrix& m, const std::vector<int>& rows, const std::vector<int>& cols)
+{
+  Matrix out = zeros(rows.size(), cols.size());
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    for (std::size_t j = 0; j < cols.size(); ++j)
+      out[i][j] = m[rows[i]][cols[j]];
+  return out;
+}
+
+/// a - b c d (the Schur complement's shape)
+Matrix minus_product(const Matrix& a, const Matrix& b, const Matrix& c, const Matrix& d)
+{
+  Matrix out = a;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    for (std::size_t j = 0; j < a[i].size(); ++j)
+      for (std::size_t k = 0; k < c.size(); ++k)
+        for (std::size_t l = 0; l < c[k].size(); ++l)
+          out[i][j] -= b[i][k] * c[k][l] * d[l][j];
+  return out;
+}
+
+Matrix transposed(const Matrix& m)
+{
+  Matrix out = zeros(m.empty() ? 0 : m[0].size(), m.size());
+  for (std::size_t i = 0; i < m.size(); ++i)
+    for (std::size_t j = 0; j < m[i].size(); ++j)
+      out[j][i] = m[i][j];
+  return out;
+}
+
+/// The largest |entry| of a tensor's rows `rows` and columns `cols`,
+/// relative to its largest entry
+double coupling(const Matrix& m, const std::vector<int>& rows, const std::vector<int>& cols)
+{
+  double largest = 0.0, out = 0.0;
+  for (const auto& row : m)
+    for (double x : row)
+      largest = std::max(largest, std::abs(x));
+  for (int i : rows)
+    for (int j : cols)
+      out = std::max(out, std::abs(m[i][j]));
+  return largest > 0.0 ? out / largest : 0.0;
+}
+
+constexpr int xx = 0, yy = 1, zz = 2, yz = 3, xz = 4, xy = 5;
+} // namespace
+
+MaterialTensors plane_strain(const MaterialTensors& m)
+{
+  return restricted(m, {xx, yy, xy}, {0, 1});
+}
+
+MaterialTensors plane_stress(const MaterialTensors& m)
+{
+  // sigma_Z = 0 solved for eps_Z with E_z = 0: eps_Z = B_ZZ^-1 (e_Z^T E - B_ZI eps_I)
+  const std::vector<int> I = {xx, yy, xy}, Z = {zz, yz, xz}, k = {0, 1};
+  Matrix B_ZZ_inv;
+  try
+  {
+    B_ZZ_inv = inverse(block(m.elastic, Z, Z));
+  }
+  catch (const std::invalid_argument&)
+  {
+    throw std::invalid_argument("its out-of-plane elastic block (zz, yz, xz) is singular: "
+                                "no plane stress state");
+  }
+  const Matrix B_ZI = block(m.elastic, Z, I), e_kZ = block(m.piezoelectric, k, Z);
+  MaterialTensors out;
+  out.elastic = minus_product(block(m.elastic, I, I), block(m.elastic, I, Z), B_ZZ_inv, B_ZI);
+  out.piezoelectric = minus_product(block(m.piezoelectric, k, I), e_kZ, B_ZZ_inv, B_ZI);
+  // beta + e_kZ B_ZZ^-1 e_lZ: the condensed strain adds to the permittivity
+  const Matrix coupled = minus_product(zeros(2, 2), e_kZ, B_ZZ_inv, transposed(e_kZ));
+  out.permittivity = block(m.permittivity, k, k);
+  for (std::size_t i = 0; i < 2; ++i)
+    for (std::size_t j = 0; j < 2; ++j)
+      out.permittivity[i][j] -= coupled[i][j];
+  // the viscosity by the same condensation: exact when it is proportional
+  // to the elasticity (presets, relaxation_time), see docs/formulations.md
+  const Matrix A_ZZ = block(m.viscosity, Z, Z);
+  if (coupling(m.viscosity, Z, Z) == 0.0)
+    out.viscosity = block(m.viscosity, I, I); // no viscosity out of the plane
+  else
+    out.viscosity = minus_product(block(m.viscosity, I, I), block(m.viscosity, I, Z),
+                                  inverse(A_ZZ), block(m.viscosity, Z, I));
+  return out;
+}
+
+MaterialTensors axisymmetric(const MaterialTensors& m)
+{
+  // x = r, y the axis, z the hoop direction: without torsion the shears yz
+  // (axis-hoop) and xz (r-hoop) vanish, and must not be driven by the rest
+  const std::vector<int> strains = {xx, yy, zz, xy}, torsion = {yz, xz};
+  const double c = std::max({coupling(m.elastic, strains, torsion),
+                             coupling(m.viscosity, strains, torsion),
+                             coupling(m.piezoelectric, {0, 1}, torsion)});
+  if (c > 1e-12)
+    throw std::invalid_argument(
+        "it couples the axisymmetric strains or fields to torsion (shears yz, xz: relative "
+        "size " + std::to_string(c) + "); axisymmetry needs its poling along x (r), y (the "
+        "axis) or z (hoop)");
+  return restricted(m, strains, {0, 1});
+}
+
+MaterialTensors reduced(const MaterialTensors& m, const std::string& formulation)
+{
+  if (formulation == "plane_stress")
+    return plane_stress(m);
+  if (formulation == "axisymmetric")
+    return axisymmetric(m);
+  return plane_strain(m);
+}
+
+namespace
+{
+/// Round-off of a rotation or a condensation below 1e-14 of a tensor's
+/// largest entry is cleaned: exact zeros stay zeros, and the solved
+/// tensors read as the data
+void clean(MaterialTensors& m)
+{
   for (Matrix* t : {&m.elastic, &m.viscosity, &m.piezoelectric, &m.permittivity})
   {
     double largest = 0.0;
@@ -219,20 +357,92 @@ json resolve_material(const json& spec, int d)
         if (std::abs(x) < 1e-14 * largest)
           x = 0.0;
   }
-  json from = spec;
-  from["relaxation_time"] = tau;
-  return {{"elastic", m.elastic},         {"viscosity", m.viscosity},
-          {"piezoelectric", m.piezoelectric}, {"permittivity", m.permittivity},
-          {"resolved_from", from}};
 }
 
-json resolve_materials(json cfg, int d)
+json tensors_json(const MaterialTensors& m, const json& from)
 {
+  json out = {{"elastic", m.elastic},
+              {"viscosity", m.viscosity},
+              {"piezoelectric", m.piezoelectric},
+              {"permittivity", m.permittivity}};
+  if (!from.is_null())
+    out["resolved_from"] = from;
+  return out;
+}
+
+/// The viscosity an explicit material means: given, or relaxation_time x elastic
+Matrix explicit_viscosity(const json& spec)
+{
+  if (spec.contains("viscosity"))
+    return spec["viscosity"].get<Matrix>();
+  Matrix A = spec["elastic"].get<Matrix>();
+  for (auto& row : A)
+    for (double& x : row)
+      x = decimal(x * spec["relaxation_time"].get<double>());
+  return A;
+}
+} // namespace
+
+json resolve_material(const json& spec, int d, const std::string& formulation)
+{
+  if (spec.contains("elastic")) // explicit, in the mesh frame
+  {
+    const json from = spec.contains("viscosity")
+                          ? json(nullptr)
+                          : json{{"relaxation_time", spec["relaxation_time"]}};
+    if (d == 2 and spec["elastic"].size() == 6) // the 3D tensors: reduced like a preset's
+    {
+      MaterialTensors m{spec["elastic"].get<Matrix>(), explicit_viscosity(spec),
+                        spec["piezoelectric"].get<Matrix>(), spec["permittivity"].get<Matrix>()};
+      m = reduced(m, formulation);
+      clean(m);
+      return tensors_json(m, from);
+    }
+    // already in the formulation's shape: as given (a resolved material
+    // validates as it is: a resumed run reads it back)
+    json out = spec;
+    if (!spec.contains("viscosity"))
+    {
+      out["viscosity"] = explicit_viscosity(spec);
+      out.erase("relaxation_time");
+      out["resolved_from"] = from;
+    }
+    return out;
+  }
+  const double tau
+      = spec.value("relaxation_time", presets()["relaxation_time"].get<double>());
+  MaterialTensors m = rotate(preset_tensors(spec["preset"], tau),
+                             spec.contains("euler")
+                                 ? euler_rotation(spec["euler"].get<std::vector<double>>())
+                                 : poling_rotation(spec["poling"].get<std::vector<double>>()));
+  if (d == 2)
+    m = reduced(m, formulation);
+  clean(m);
+  json from = spec;
+  from["relaxation_time"] = tau;
+  return tensors_json(m, from);
+}
+
+json resolve_materials(json cfg, int d, const std::string& source)
+{
+  const std::string formulation = d == 2 ? cfg["formulation"].get<std::string>() : "";
+  const auto resolve = [&](json& spec, const std::string& path)
+  {
+    try
+    {
+      spec = resolve_material(spec, d, formulation);
+    }
+    catch (const std::invalid_argument& e)
+    {
+      throw ConfigError(printable(source, 200) + ": " + path + ": " + formulation + ": "
+                        + e.what());
+    }
+  };
   if (cfg.contains("material"))
-    cfg["material"] = resolve_material(cfg["material"], d);
+    resolve(cfg["material"], "material");
   if (cfg.contains("regions"))
     for (auto& [name, spec] : cfg["regions"].items())
-      spec = resolve_material(spec, d);
+      resolve(spec, "regions." + name);
   return cfg;
 }
 } // namespace piezocontact

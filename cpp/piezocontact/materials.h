@@ -1,7 +1,9 @@
 // Materials: presets (config/materials.json, crystal frame, poling axis 3)
-// rotated into the mesh frame by a poling direction or Euler angles, and
-// reduced to plane strain in 2D; explicit tensors pass through. What a run
-// solves with is always the resolved Voigt tensors in the mesh frame.
+// rotated into the 3D frame by a poling direction or Euler angles, and in 2D
+// reduced by the formulation (plane strain, plane stress, axisymmetric);
+// explicit tensors pass through, or are reduced like presets when given in
+// their 3D shape on a 2D mesh. What a run solves with is always the
+// resolved Voigt tensors in the mesh frame (docs/formulations.md).
 #pragma once
 
 #include "config.h"
@@ -15,7 +17,8 @@ namespace piezocontact
 using Matrix = std::vector<std::vector<double>>;
 
 /// A material's tensors in Voigt form (order [xx, yy, zz, yz, xz, xy] in
-/// 3D, [xx, yy, xy] in 2D, engineering shears in the strain)
+/// 3D, [xx, yy, xy] in plane strain and stress, [xx, yy, zz, xy] in
+/// axisymmetry; engineering shears in the strain)
 struct MaterialTensors
 {
   Matrix elastic, viscosity, piezoelectric, permittivity;
@@ -37,14 +40,30 @@ MaterialTensors preset_tensors(const std::string& name, double tau);
 MaterialTensors rotate(const MaterialTensors& m, const std::array<std::array<double, 3>, 3>& R);
 
 /// The plane-strain reduction: rows and columns xx, yy, xy (strains) and
-/// x, y (fields) of 3D tensors
+/// x, y (fields) of 3D tensors (eps_z* = 0, E_z = 0)
 MaterialTensors plane_strain(const MaterialTensors& m);
 
-/// A validated material spec (preset or explicit) resolved in d dimensions:
-/// {elastic, viscosity, piezoelectric, permittivity, resolved_from: spec}
-json resolve_material(const json& spec, int d);
+/// The plane-stress reduction: the out-of-plane stresses (zz, yz, xz)
+/// condensed out of the 3D law with E_z = 0. Throws std::invalid_argument
+/// if the out-of-plane elastic block is singular.
+MaterialTensors plane_stress(const MaterialTensors& m);
+
+/// The axisymmetric reduction (x = r, y the axis, z the hoop direction):
+/// rows and columns xx, yy, zz, xy and fields x, y. Throws
+/// std::invalid_argument if the material couples them to torsion.
+MaterialTensors axisymmetric(const MaterialTensors& m);
+
+/// The reduction of a 2D formulation ("plane_strain", "plane_stress",
+/// "axisymmetric")
+MaterialTensors reduced(const MaterialTensors& m, const std::string& formulation);
+
+/// A validated material spec (preset or explicit) resolved in d dimensions
+/// and a formulation: {elastic, viscosity, piezoelectric, permittivity,
+/// resolved_from: spec}. Throws std::invalid_argument (a reduction's).
+json resolve_material(const json& spec, int d, const std::string& formulation);
 
 /// The config with every material ("material" or each of "regions")
-/// resolved in d dimensions
-json resolve_materials(json cfg, int d);
+/// resolved in d dimensions and the config's formulation. Throws
+/// ConfigError naming the material.
+json resolve_materials(json cfg, int d, const std::string& source);
 } // namespace piezocontact

@@ -83,6 +83,10 @@ struct ModelSpec
   std::map<std::string, std::vector<std::string>> boundary_keys;
   /// The Lagrange degrees of u and phi (config "elements")
   std::array<int, 2> degrees = {1, 1};
+  /// The axisymmetric formulation of a 2D mesh (its own kernels: the hoop
+  /// strain, the weight 2 pi r); plane strain and stress share the plane
+  /// kernels and differ in their materials (materials.h)
+  bool axisymmetric = false;
 };
 
 /// A model builder has no kernels for the degrees a ModelSpec asks for (the
@@ -96,6 +100,9 @@ struct DegreesNotCarried : std::runtime_error
 struct Model
 {
   NamedMesh mesh;
+  /// The axisymmetric formulation (ModelSpec): u_r = 0 on the axis, four
+  /// stress components
+  bool axisymmetric = false;
   /// The mixed space of x = (u, phi): sub-space 0 is u, 1 is phi
   std::shared_ptr<const compat::FunctionSpace> W;
   /// The P1 space of the lumped contact pressure (null without contact forms)

@@ -270,11 +270,13 @@ Writer::Writer(const Problem& problem, const OutputSettings& settings, const fs:
   const int d = mesh->geometry().dim();
   _D = std::make_shared<fem::Function<double>>(compat::dg0_space(mesh, d));
   _D->name = "D";
-  _stress = std::make_shared<fem::Function<double>>(compat::dg0_space(mesh, d == 2 ? 3 : 6));
-  // XDMF has no Voigt vector: one scalar field per component
+  // XDMF has no Voigt vector: one scalar field per component, named in the
+  // 3D frame (axisymmetry: x = r, y the axis, z the hoop direction)
   const std::vector<std::string> voigt
-      = d == 2 ? std::vector<std::string>{"xx", "yy", "xy"}
-               : std::vector<std::string>{"xx", "yy", "zz", "yz", "xz", "xy"};
+      = problem.model.axisymmetric ? std::vector<std::string>{"xx", "yy", "zz", "xy"}
+        : d == 2                   ? std::vector<std::string>{"xx", "yy", "xy"}
+                                   : std::vector<std::string>{"xx", "yy", "zz", "yz", "xz", "xy"};
+  _stress = std::make_shared<fem::Function<double>>(compat::dg0_space(mesh, voigt.size()));
   for (std::size_t c = 0; c < voigt.size(); ++c)
   {
     auto [Vc, map] = compat::sub(*_stress->function_space(), int(c))->collapse();

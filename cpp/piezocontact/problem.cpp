@@ -214,6 +214,26 @@ la::Vector<double> Problem::assemble(const FormList& terms) const
   return b;
 }
 
+// In axisymmetry u_r = 0 on the axis: the hoop strain u_r / r stays finite
+// (the facets on x = 0, to round-off of the mesh's size)
+void Problem::fix_on_axis()
+{
+  const int fdim = compat::topology(*mesh).dim() - 1;
+  const auto& geometry = mesh->geometry();
+  double size = 0.0;
+  for (std::size_t i = 0; i < geometry.x().size(); ++i)
+    size = std::max(size, std::abs(geometry.x().data()[i]));
+  MPI_Allreduce(MPI_IN_PLACE, &size, 1, MPI_DOUBLE, MPI_MAX, comm);
+  const double tol = 1e-12 * size;
+  const auto facets = compat::locate_boundary_facets(
+      *mesh, [tol](double x, double, double) { return std::abs(x) <= tol; });
+  auto zero = std::make_shared<fem::Function<double>>(V_u);
+  auto Wr = compat::sub(*compat::sub(*W, 0), 0);
+  auto dofs = compat::locate_dofs_topological(*Wr, *compat::sub(*V_u, 0), fdim, facets);
+  _bc_dofs.insert(_bc_dofs.end(), dofs[0].begin(), dofs[0].end());
+  _bcs.push_back(std::make_shared<fem::DirichletBC<double>>(zero, std::move(dofs), Wr));
+}
+
 // u and phi Dirichlet conditions on the collapsed sub-spaces (a Constant on a
 // vector sub-space of a mixed space throws in 0.5.2).
 void Problem::create_bcs(const std::vector<DirichletSettings>& dirichlet,
@@ -221,6 +241,8 @@ void Problem::create_bcs(const std::vector<DirichletSettings>& dirichlet,
 {
   const int fdim = compat::topology(*mesh).dim() - 1;
   const auto W_phi = compat::sub(*W, 1);
+  if (model.axisymmetric)
+    fix_on_axis();
   for (const auto& bc : dirichlet)
   {
     const auto facets = model.mesh.boundary_facets(bc.boundary);

@@ -185,6 +185,7 @@ private:
   mutable double _load_amplitude = -1.0; ///< applied_load at factor 1; < 0: not yet
   double load_sum() const;
   std::vector<std::shared_ptr<dolfinx::fem::Function<double>>> _scaled_bc_values;
+  void fix_on_axis();
   void create_bcs(const std::vector<DirichletSettings>& dirichlet, const std::string& source);
   /// Throws ConfigError if a floating electrode shares a vertex with
   /// another electrode (its potential would be two unknowns at once)

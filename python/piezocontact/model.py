@@ -56,10 +56,10 @@ def _constant(msh, shape):
     return fem.Constant(msh, np.zeros(shape))
 
 
-def model_constants(msh, named, manufactured=False):
+def model_constants(msh, named, manufactured=False, axisymmetric=False):
     """The Constants of the forms, zero: those shared by every term, each
     region's material and each named boundary's loads."""
-    groups = entry_points.data(msh.geometry.dim, manufactured)
+    groups = entry_points.data(msh.geometry.dim, manufactured, axisymmetric)
 
     def zeros(group):
         return {name: _constant(msh, datum.shape) for name, datum in groups[group].items()}
@@ -99,7 +99,8 @@ def _mark(msh, dim, entities):
     return dmesh.meshtags(msh, dim, entities, np.ones_like(entities))
 
 
-Spec = collections.namedtuple("Spec", "manufactured contact electrodes boundary_keys degrees")
+Spec = collections.namedtuple("Spec",
+                              "manufactured contact electrodes boundary_keys degrees axisymmetric")
 
 
 class JitModel:
@@ -109,8 +110,10 @@ class JitModel:
     compiled_model.cpp does); `F_whole`, `J_whole` are the same residual as
     one form on the mesh's own tags, for the reference engine. The hooks:
       extra_residual(u, phi, w, psi, data) -> UFL form added to F (J follows
-        by differentiation); data: the shared Constants and, with one
-        material, the material's (Bv, Av, e, beta);
+        by differentiation); data: the shared Constants, with one material
+        the material's (Bv, Av, e, beta), and "weight": the formulation's
+        weight of an integral (2 pi r in axisymmetry, where a hook's
+        integrals are per revolution as the model's are, 1 otherwise);
       contact_law(r, c_p) -> UFL expression replacing the law p."""
 
     def __init__(self, named, spec, extra_residual=None, contact_law=None):
@@ -118,7 +121,7 @@ class JitModel:
         # a copy: the core's ModelSpec lives for the factory's call only
         self.spec = Spec(spec.manufactured, list(spec.contact), list(spec.electrodes),
                          {b: list(keys) for b, keys in spec.boundary_keys.items()},
-                         tuple(spec.degrees))
+                         tuple(spec.degrees), spec.axisymmetric)
         self.mesh = msh = python_mesh(named)
         cell_name = compat.cell_name(msh.topology)
         _, mixed, pressure = elements(cell_name, *spec.degrees)
@@ -126,11 +129,14 @@ class JitModel:
         self.P = compat.functionspace(msh, pressure)  # the contact pressure's
         self.x = fem.Function(self.W, name="x")
         self.x_prev = fem.Function(self.W, name="x_prev")
-        self.data, self.materials, self.loads = model_constants(msh, named, spec.manufactured)
+        self.data, self.materials, self.loads = model_constants(msh, named, spec.manufactured,
+                                                                spec.axisymmetric)
         self.sources = sources(msh.geometry.dim, spec.manufactured)
         self.terms = terms.catalogue(msh.geometry.dim, spec.manufactured)
+        self.kin = pf.Kinematics(spec.axisymmetric)
         self.context = terms.Context(self.x, self.x_prev, ufl.TestFunction(self.W), self.data,
-                                     law=contact_law or pf.p, q=ufl.TestFunction(self.P))
+                                     law=contact_law or pf.p, q=ufl.TestFunction(self.P),
+                                     kin=self.kin)
         self.dx_trial = ufl.TrialFunction(self.W)
         self.contact_facets = np.unique(np.concatenate(
             [named.boundary_facets(b) for b in spec.contact] + [np.zeros(0, np.int32)]))
@@ -199,7 +205,8 @@ class JitModel:
 
     def _hook_data(self):
         one = next(iter(self.materials.values())) if len(self.materials) == 1 else {}
-        return {**self.data, **one}
+        weight = self.kin.weight(self.mesh.ufl_domain()) if self.kin.axisymmetric else 1.0
+        return {**self.data, **one, "weight": weight}
 
     def _hook(self, extra_residual):
         """The script's extra residual term, on the whole mesh."""
@@ -262,6 +269,7 @@ class JitModel:
             return {name: c(obj) for name, obj in objects.items()}
         m = cpp.Model()
         m.mesh = self.named
+        m.axisymmetric = self.spec.axisymmetric
         m.W, m.P, m.x, m.x_prev = c(self.W), c(self.P), c(self.x), c(self.x_prev)
         m.constants = cpp_map(self.data)
         m.materials = {r: cpp_map(mat) for r, mat in self.materials.items()}

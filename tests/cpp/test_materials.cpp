@@ -126,10 +126,84 @@ TEST(Materials, PlaneStrainKeepsTheInPlaneEntries)
 TEST(Materials, ResolvedInTwoDimensionsPoledAlongY)
 {
   const json p = pzt5h();
-  const json r = resolve_material({{"preset", "PZT-5H"}, {"poling", {0, 1}}}, 2);
+  const json r = resolve_material({{"preset", "PZT-5H"}, {"poling", {0, 1}}}, 2, "plane_strain");
   EXPECT_LT(rel(r["elastic"][1][1].get<double>(), p["c33"].get<double>() * 1e9), 1e-14);
   EXPECT_LT(rel(r["elastic"][0][0].get<double>(), p["c11"].get<double>() * 1e9), 1e-14);
   EXPECT_LT(rel(r["piezoelectric"][1][1].get<double>(), p["e33"].get<double>()), 1e-14);
   EXPECT_LT(rel(r["piezoelectric"][1][0].get<double>(), p["e31"].get<double>()), 1e-14);
   EXPECT_EQ(r["piezoelectric"][0][0].get<double>(), 0.0);
+}
+
+// Plane stress of PZT-5H poled along y (crystal 1 = x, 3 = y, 2 out of the
+// plane): the classical condensed constants, c11 - c12^2/c11, ...,
+// e33 - e31 c13/c11, eps33 + e31^2/c11 (sigma_zz = 0, E_z = 0)
+TEST(Materials, PlaneStressCondensesTheOutOfPlaneStress)
+{
+  const json p = pzt5h();
+  const double GPa = 1e9, c11 = p["c11"].get<double>() * GPa, c12 = p["c12"].get<double>() * GPa,
+               c13 = p["c13"].get<double>() * GPa, c33 = p["c33"].get<double>() * GPa,
+               c44 = p["c44"].get<double>() * GPa, e31 = p["e31"], e33 = p["e33"],
+               e15 = p["e15"], eps0 = p["eps0"], eps11 = p["eps11"].get<double>() * eps0,
+               eps33 = p["eps33"].get<double>() * eps0;
+  const auto m = plane_stress(rotate(preset_tensors("PZT-5H", 0.1), poling_rotation({0, 1})));
+  expect_same(m.elastic, {{c11 - c12 * c12 / c11, c13 - c12 * c13 / c11, 0},
+                          {c13 - c12 * c13 / c11, c33 - c13 * c13 / c11, 0},
+                          {0, 0, c44}});
+  expect_same(m.piezoelectric, {{0, 0, e15}, {e31 - e31 * c12 / c11, e33 - e31 * c13 / c11, 0}});
+  expect_same(m.permittivity, {{eps11, 0}, {0, eps33 + e31 * e31 / c11}});
+  // viscosity = 0.1 elastic condenses to 0.1 x the condensed elasticity
+  Matrix tau_B = m.elastic;
+  for (auto& row : tau_B)
+    for (double& x : row)
+      x *= 0.1;
+  expect_same(m.viscosity, tau_B);
+}
+
+// An isotropic solid in plane stress: E / (1 - nu^2) [[1, nu, 0], [nu, 1, 0],
+// [0, 0, (1 - nu) / 2]], from its explicit 3D tensor on a 2D mesh
+TEST(Materials, PlaneStressOfAnIsotropicSolidIsTheTextbookOne)
+{
+  const double E = 70e9, nu = 0.3, l = E * nu / ((1 + nu) * (1 - 2 * nu)), mu = E / (2 * (1 + nu));
+  Matrix C(6, std::vector<double>(6, 0.0));
+  for (int i = 0; i < 3; ++i)
+  {
+    for (int j = 0; j < 3; ++j)
+      C[i][j] = l + (i == j ? 2 * mu : 0.0);
+    C[i + 3][i + 3] = mu;
+  }
+  const json spec = {{"elastic", C},
+                     {"relaxation_time", 0.5},
+                     {"piezoelectric", Matrix(3, std::vector<double>(6, 0.0))},
+                     {"permittivity", {{1e-11, 0, 0}, {0, 1e-11, 0}, {0, 0, 1e-11}}}};
+  const json r = resolve_material(spec, 2, "plane_stress");
+  const double k = E / (1 - nu * nu);
+  expect_same(r["elastic"].get<Matrix>(), {{k, k * nu, 0}, {k * nu, k, 0}, {0, 0, mu}});
+  expect_same(r["viscosity"].get<Matrix>(),
+              {{0.5 * k, 0.5 * k * nu, 0}, {0.5 * k * nu, 0.5 * k, 0}, {0, 0, 0.5 * mu}});
+  EXPECT_EQ(r["permittivity"].size(), 2u);
+}
+
+// Axisymmetric PZT-5H poled along the axis y: strains (r, z, hoop, rz) are
+// the crystal's (1, 3, 2, 13)
+TEST(Materials, AxisymmetricKeepsRadialAxialHoopAndShear)
+{
+  const json p = pzt5h();
+  const double GPa = 1e9, c11 = p["c11"].get<double>() * GPa, c12 = p["c12"].get<double>() * GPa,
+               c13 = p["c13"].get<double>() * GPa, c33 = p["c33"].get<double>() * GPa,
+               c44 = p["c44"].get<double>() * GPa, e31 = p["e31"], e33 = p["e33"],
+               e15 = p["e15"];
+  const auto m = axisymmetric(rotate(preset_tensors("PZT-5H", 0.1), poling_rotation({0, 1})));
+  expect_same(m.elastic,
+              {{c11, c13, c12, 0}, {c13, c33, c13, 0}, {c12, c13, c11, 0}, {0, 0, 0, c44}});
+  expect_same(m.piezoelectric, {{0, 0, 0, e15}, {e31, e33, e31, 0}});
+}
+
+// A poling that tilts out of the (r, z) plane drives torsion: refused
+TEST(Materials, AxisymmetryRefusesATorsionalMaterial)
+{
+  const auto m = rotate(preset_tensors("PZT-5H", 0.1), euler_rotation({0, 30, 0}));
+  EXPECT_THROW(axisymmetric(m), std::invalid_argument);
+  const json spec = {{"preset", "PZT-5H"}, {"euler", {0, 30, 0}}};
+  EXPECT_THROW(resolve_material(spec, 2, "axisymmetric"), std::invalid_argument);
+  EXPECT_NO_THROW(resolve_material(spec, 2, "plane_stress"));
 }
