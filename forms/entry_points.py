@@ -69,8 +69,17 @@ def points(kind, cell_name, degrees):
     return node_points(cell_name, degrees[{"u_nodes": 0, "phi_nodes": 1}[kind]])
 
 
-def declare(cell_name, shapes, degrees=(1, 1)):
-    """Mesh, W, x, x_prev, the pressure's space and {name: Constant}."""
+def field_degree(degrees):
+    """The degree of the fields a spatial datum is interpolated in: the
+    higher of u's and phi's (data given by expressions are then exact
+    wherever the solution can be)."""
+    return max(degrees)
+
+
+def declare(cell_name, data, degrees=(1, 1), fields=False):
+    """Mesh, W, x, x_prev, the pressure's space, {name: Constant} of the
+    data ({name: Datum}) and, with `fields`, {name: field coefficient} of
+    the spatial ones."""
     coordinate, mixed, pressure = elements(cell_name, *degrees)
     mesh = ufl.Mesh(coordinate)
     W = ufl.FunctionSpace(mesh, mixed)
@@ -78,8 +87,11 @@ def declare(cell_name, shapes, degrees=(1, 1)):
                "x": ufl.Coefficient(W),       # (u_n, phi_n), the unknown of the step
                "x_prev": ufl.Coefficient(W),  # (u_{n-1}, phi_{n-1})
                "P": ufl.FunctionSpace(mesh, pressure)}
-    constants = {name: ufl.Constant(mesh, shape=shape) for name, shape in shapes.items()}
-    return objects, constants
+    constants = {name: ufl.Constant(mesh, shape=datum.shape) for name, datum in data.items()}
+    fields = {name: ufl.Coefficient(ufl.FunctionSpace(
+        mesh, lagrange(cell_name, field_degree(degrees), datum.shape)))
+        for name, datum in data.items() if datum.spatial and fields}
+    return objects, constants, fields
 
 
 def data(d, manufactured_run, axisymmetric=False):
@@ -91,20 +103,26 @@ def data(d, manufactured_run, axisymmetric=False):
     return {"shared": shared, "material": material, "load": pf.load_data(d)}
 
 
-def compiled(cell_name, variant=None, degrees=(1, 1), axisymmetric=False):
+def compiled(cell_name, variant=None, degrees=(1, 1), axisymmetric=False, fields=False):
     """What ffcx compiles for a variant (None: the model): {name: form} and
     {name: (expression, reference points)}, every term of the catalogue the
     variant defines, on its piece (dx(1), ds(1): the core marks the piece
     with 1), and for the model the Jacobian of each residual term (its
     derivative), with {Jacobian's name: "J" or "J_state"}. `axisymmetric`:
-    the axisymmetric formulation of a triangle mesh."""
+    the axisymmetric formulation of a triangle mesh; `fields`: the data
+    that may vary in space carry their fields (a run whose config gives
+    some by expressions; without, the forms are the Constants' alone, and
+    their kernels those of a run without expressions, bit for bit)."""
     d = DIMENSION[cell_name]
     assert d == 2 or not axisymmetric, "axisymmetry is a formulation of 2D meshes"
     groups = data(d, variant == "manufactured", axisymmetric)
-    objects, constants = declare(cell_name, {name: datum.shape for group in groups.values()
-                                             for name, datum in group.items()}, degrees)
+    objects, constants, fields = declare(cell_name, {name: datum for group in groups.values()
+                                                     for name, datum in group.items()},
+                                         degrees, fields)
+    objects.update({pf.field_name(name): f for name, f in fields.items()})
     mesh, W = objects["mesh"], objects["W"]
-    by_group = {g: {name: constants[name] for name in group} for g, group in groups.items()}
+    by_group = {g: pf.with_fields({name: constants[name] for name in group}, fields)
+                for g, group in groups.items()}
     c = terms.Context(objects["x"], objects["x_prev"], ufl.TestFunction(W), by_group["shared"],
                       q=ufl.TestFunction(objects["P"]), kin=pf.Kinematics(axisymmetric))
     dx_trial = ufl.TrialFunction(W)
@@ -126,10 +144,10 @@ def compiled(cell_name, variant=None, degrees=(1, 1), axisymmetric=False):
     return objects, constants, forms, expressions, jacobians
 
 
-def entry(cell_name, variant=None, degrees=(1, 1), axisymmetric=False):
+def entry(cell_name, variant=None, degrees=(1, 1), axisymmetric=False, fields=False):
     """The namespace of a .ufl file: every object by name, and the lists of
     what ffcx compiles."""
     objects, constants, forms, expressions, _ = compiled(cell_name, variant, degrees,
-                                                         axisymmetric)
+                                                         axisymmetric, fields)
     return {**objects, **constants, **forms, **{n: e for n, (e, _) in expressions.items()},
             "forms": list(forms.values()), "expressions": list(expressions.values())}

@@ -290,21 +290,38 @@ class Datum:
     within a region's material or a boundary's entry for the others; None:
     the core sets it, as the time step); `timed`: the key may carry a
     history (the core scales the value at every step); `flag`: a switch,
-    1 where the key's value is this string, else 0. A key the config leaves
-    out leaves the Constant zero."""
+    1 where the key's value is this string, else 0; `spatial`: the key's
+    numbers may be expressions in x, y, z, t, which the core interpolates
+    into a field of its own (`field_name`): the forms see the datum as the
+    Constant plus that field (one of the two is zero). A key the config
+    leaves out leaves the Constant zero."""
 
-    def __init__(self, shape, key=None, timed=False, flag=None):
+    def __init__(self, shape, key=None, timed=False, flag=None, spatial=False):
         self.shape, self.key, self.timed, self.flag = shape, key, timed, flag
+        self.spatial = spatial
+
+
+def field_name(name):
+    """The coefficient of the forms that carries the part of a spatial
+    datum that varies in space."""
+    return f"{name}_field"
+
+
+def with_fields(constants, fields):
+    """The data the terms see: each Constant, plus its field where the
+    datum is spatial (fields: {datum name: coefficient})."""
+    return {name: c + fields[name] if name in fields else c for name, c in constants.items()}
 
 
 def shared_data(d):
     """The Constants shared by every term (d dimensions)."""
     return {
         "c_p": Datum((), "contact.c_p"),                    # surface stiffness of the foundation (N/m^3)
-        "g": Datum((), "contact.gap"),                      # initial gap along nu (m)
+        "g": Datum((), "contact.gap", spatial=True),        # initial gap along nu (m)
         "k": Datum(()),                                     # time step (s)
-        "f0": Datum((d,), "loads.body_force", timed=True),  # body force (N/m^3)
-        "q0": Datum((), "loads.charge_density", timed=True),  # free charge density (C/m^3)
+        "f0": Datum((d,), "loads.body_force", timed=True, spatial=True),  # body force (N/m^3)
+        # free charge density (C/m^3)
+        "q0": Datum((), "loads.charge_density", timed=True, spatial=True),
     }
 
 
@@ -322,8 +339,8 @@ def material_data(d, axisymmetric=False):
 def load_data(d):
     """The Constants of one named boundary: its loads and its elastic bed."""
     return {
-        "fF": Datum((d,), "traction", timed=True),     # traction (N/m^2)
-        "qF": Datum((), "surface_charge", timed=True),  # surface charge (C/m^2)
+        "fF": Datum((d,), "traction", timed=True, spatial=True),      # traction (N/m^2)
+        "qF": Datum((), "surface_charge", timed=True, spatial=True),  # surface charge (C/m^2)
         "k_n": Datum((), "spring.normal"),              # bed stiffness along nu (N/m^3)
         "k_t": Datum((), "spring.tangential"),          # bed stiffness across nu (N/m^3)
     }

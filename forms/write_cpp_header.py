@@ -9,13 +9,19 @@ import os
 import sys
 
 import entry_points as ep
+import piezo_forms as pf
 import terms
 
 CELL = {2: "triangle", 3: "tetrahedron"}
 # the kernel families: (dimension, axisymmetric) and the name of their files
 FAMILIES = {(2, False): "2d", (3, False): "3d", (2, True): "axi"}
-# the ffcx file that holds a variant's kernels, by family
-PREFIX = {None: "piezo_contact_{f}", "manufactured": "manufactured_{f}"}
+# the ffcx file that holds a variant's kernels, by family; "fields": the
+# model with the fields of data given by expressions
+PREFIX = {None: "piezo_contact_{f}", "fields": "piezo_contact_{f}_fields",
+          "manufactured": "manufactured_{f}"}
+# the kinds of run: (manufactured, fields); a manufactured run takes no
+# expressions (config.cpp)
+RUNS = ((False, False), (False, True), (True, False))
 
 
 def suffix(degrees):
@@ -30,23 +36,24 @@ def files(degrees):
     return {v: p + suffix(degrees) for v, p in PREFIX.items()}
 
 
-def roles(d, axisymmetric, manufactured_run, degrees):
+def roles(d, axisymmetric, manufactured_run, fields, degrees):
     """(term, role, ffcx file, form name) in catalogue order, each Jacobian
     after the residual term it is the derivative of."""
     jacobians = ep.compiled(CELL[d], degrees=degrees, axisymmetric=axisymmetric)[4]
     prefix = files(degrees)
+    model = prefix["fields" if fields else None]
     out = []
     for t in terms.catalogue(d, manufactured_run):
-        out.append((t, t.role, prefix[t.variant], t.name))
+        out.append((t, t.role, model if t.variant is None else prefix[t.variant], t.name))
         if t.role == "F" and terms.jacobian_name(t) in jacobians:
             name = terms.jacobian_name(t)
-            out.append((t, jacobians[name], prefix[None], name))
+            out.append((t, jacobians[name], model, name))
     return out
 
 
-def term_table(d, axisymmetric, manufactured_run, degrees):
+def term_table(d, axisymmetric, manufactured_run, fields, degrees):
     rows = []
-    for t, role, prefix, name in roles(d, axisymmetric, manufactured_run, degrees):
+    for t, role, prefix, name in roles(d, axisymmetric, manufactured_run, fields, degrees):
         p = prefix.format(f=FAMILIES[d, axisymmetric])
         kernel = (f"nullptr, expression_{p}_{name}" if t.expression
                   else f"form_{p}_{name}, nullptr")
@@ -55,14 +62,16 @@ def term_table(d, axisymmetric, manufactured_run, degrees):
     return "{" + ",\n          ".join(rows) + "}"
 
 
-def data_table(d, axisymmetric, manufactured_run, degrees=None):
+def data_table(d, axisymmetric, manufactured_run, fields, degrees=None):
     groups = ep.data(d, manufactured_run, axisymmetric)
     rows = []
     for group, data in groups.items():
         for name, datum in data.items():
             shape = ", ".join(map(str, datum.shape))
+            field = pf.field_name(name) if datum.spatial and fields else ""
             rows.append(f'{{"{group}", "{name}", {{{shape}}}, "{datum.key or ""}", '
-                        f'{"true" if datum.timed else "false"}, "{datum.flag or ""}"}}')
+                        f'{"true" if datum.timed else "false"}, "{datum.flag or ""}", '
+                        f'"{field}"}}')
     return "{" + ",\n          ".join(rows) + "}"
 
 
@@ -71,10 +80,11 @@ def by_case(table, per_degree=True):
     for degrees in ep.COMPILED_DEGREES if per_degree else [None]:
         when = f" and degrees == Degrees{{{degrees[0]}, {degrees[1]}}}" if degrees else ""
         for d, axi in FAMILIES:
-            for m in (False, True):
+            for m, fields in RUNS:
                 cases.append(f"  if (d == {d} and axisymmetric == {'true' if axi else 'false'}"
                              f" and manufactured == {'true' if m else 'false'}"
-                             f"{when})\n    return {table(d, axi, m, degrees)};")
+                             f" and fields == {'true' if fields else 'false'}"
+                             f"{when})\n    return {table(d, axi, m, fields, degrees)};")
     return "\n".join(cases)
 
 
@@ -88,6 +98,14 @@ def space_factories():
             cases.append(f"  if (d == {d} and degrees == Degrees{{{degrees[0]}, {degrees[1]}}})\n"
                          f"    return {{PIEZO_UFCX_SPACE(functionspace_form_{p}_F_region), "
                          f"PIEZO_UFCX_SPACE(functionspace_form_{p}_contact_pressure_load)}};")
+    return "\n".join(cases)
+
+
+def field_degrees():
+    cases = []
+    for degrees in ep.COMPILED_DEGREES:
+        cases.append(f"  if (degrees == Degrees{{{degrees[0]}, {degrees[1]}}})\n"
+                     f"    return {ep.field_degree(degrees)};")
     return "\n".join(cases)
 
 
@@ -138,7 +156,9 @@ struct Term
 
 /// A Constant of the forms: its group ("shared", "material", "load"),
 /// name, shape, the config key that sets it (empty: the core), whether
-/// that key may carry a history, and for a switch the value that makes it 1
+/// that key may carry a history, for a switch the value that makes it 1,
+/// and for a datum that may vary in space the name of its field (the
+/// coefficient the core interpolates expressions into; empty: none)
 struct Datum
 {{
   std::string group, name;
@@ -146,17 +166,27 @@ struct Datum
   std::string key;
   bool timed;
   std::string flag;
+  std::string field;
 }};
 
 /// The degrees of the fields (u, phi)
 using Degrees = std::array<int, 2>;
 
+/// The Lagrange degree of the fields of spatial data, at some degrees
+inline int field_degree(Degrees degrees)
+{{
+{field_degrees()}
+  throw std::invalid_argument("no fields at these degrees");
+}}
+
 /// The degrees compiled ahead of time
 inline std::vector<Degrees> carried() {{ return {{{carried()}}}; }}
 
 /// The terms of a run in d dimensions (axisymmetric or Cartesian) at some
-/// degrees, in the order they are summed
-inline std::vector<Term> catalogue(int d, bool axisymmetric, bool manufactured, Degrees degrees)
+/// degrees, in the order they are summed; `fields`: the kernels with the
+/// fields of data given by expressions
+inline std::vector<Term> catalogue(int d, bool axisymmetric, bool manufactured, bool fields,
+                                   Degrees degrees)
 {{
 {by_case(term_table)}
   throw std::invalid_argument("no kernels for d = " + std::to_string(d) + " at degrees "
@@ -173,7 +203,7 @@ space_factories(int d, Degrees degrees)
 }}
 
 /// The Constants of the forms (the same at every degree)
-inline std::vector<Datum> data(int d, bool axisymmetric, bool manufactured)
+inline std::vector<Datum> data(int d, bool axisymmetric, bool manufactured, bool fields)
 {{
 {by_case(data_table, per_degree=False)}
   throw std::invalid_argument("no kernels for d = " + std::to_string(d));

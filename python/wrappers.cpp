@@ -103,7 +103,8 @@ void declare_model(py::module_& m)
       .def_rw("electrodes", &ModelSpec::electrodes)
       .def_rw("boundary_keys", &ModelSpec::boundary_keys)
       .def_rw("degrees", &ModelSpec::degrees)
-      .def_rw("axisymmetric", &ModelSpec::axisymmetric);
+      .def_rw("axisymmetric", &ModelSpec::axisymmetric)
+      .def_rw("expression_keys", &ModelSpec::expression_keys);
 
   class_<ConstantSource>(m, "ConstantSource",
                          "Where a Constant's value comes from (model.h)")
@@ -112,7 +113,8 @@ void declare_model(py::module_& m)
       .def_rw("name", &ConstantSource::name)
       .def_rw("key", &ConstantSource::key)
       .def_rw("timed", &ConstantSource::timed)
-      .def_rw("flag", &ConstantSource::flag);
+      .def_rw("flag", &ConstantSource::flag)
+      .def_rw("field", &ConstantSource::field);
 
   class_<RegionFields>(m, "RegionFields", "The cell-wise output of one region")
       .def(py::init<>())
@@ -132,6 +134,8 @@ void declare_model(py::module_& m)
       .def_rw("constants", &Model::constants)
       .def_rw("materials", &Model::materials)
       .def_rw("loads", &Model::loads)
+      .def_rw("data_fields", &Model::data_fields)
+      .def_rw("load_data_fields", &Model::load_data_fields)
       .def_rw("sources", &Model::sources)
       .def_rw("contact_facets", &Model::contact_facets)
       .def_rw("F", &Model::F)
@@ -312,6 +316,7 @@ void declare_record(py::module_& m)
           "Record an accepted step (the Problem's x holds it); its record as JSON")
       .def("reject", &Record::reject)
       .def("fail", &Record::fail)
+      .def("refuse", &Record::refuse)
       .def("interrupt",
            [](Record& r, int signum, const std::string& timing)
            { raising_interrupted([&] { r.interrupt(signum, json::parse(timing)); }); })

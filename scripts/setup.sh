@@ -27,12 +27,16 @@ PACKAGES=(
   python3-gmsh
   # build: compilers, CMake, pkg-config (PETSc), JSON for the C++ config
   cmake g++ make pkg-config nlohmann-json3-dev libgtest-dev
+  # expressions of x, y, z, t in prescribed data
+  libmuparser-dev
   # Python bindings of the C++ core
   "${BINDINGS[@]}" python3-dev
   # MPI launcher; OpenBLAS makes MUMPS' LU ~3x faster than reference BLAS
   openmpi-bin libopenblas0
   # tests and pictures
   python3-pytest python3-matplotlib
+  # tests derive the loads of exact solutions as expressions
+  python3-sympy
   # tests read the XDMF steps back; the forms-edit test copies the tracked tree
   # (git ls-files)
   python3-h5py git

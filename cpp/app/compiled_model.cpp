@@ -32,6 +32,15 @@ ConstantMap zero_constants(const std::vector<forms::Datum>& data, const std::str
   return out;
 }
 
+/// The forms' coefficients of some fields (by their field names)
+void add_fields(Coefficients& to, const FunctionMap& fields,
+                const std::vector<forms::Datum>& data)
+{
+  for (const auto& datum : data)
+    if (auto f = fields.find(datum.name); f != fields.end() and !datum.field.empty())
+      to[datum.field] = f->second;
+}
+
 /// The union of Constant maps, as create_form takes them
 Constants merged(std::initializer_list<const ConstantMap*> maps)
 {
@@ -50,6 +59,7 @@ struct Instance
   std::vector<std::int32_t> entities;
   bool marked;
   Constants constants;
+  const FunctionMap* fields = nullptr; ///< a boundary's fields of its data
 };
 
 /// Builds a Model from the catalogue: one loop over its terms, each
@@ -61,7 +71,10 @@ public:
   {
     const int d = named.mesh->geometry().dim();
     check_carried(spec.degrees);
-    const auto data = forms::data(d, spec.axisymmetric, spec.manufactured);
+    // (a manufactured run has no expressions: config.cpp refuses them)
+    _fields = !spec.manufactured
+              and needs_fields(forms::data(d, spec.axisymmetric, false, true), spec);
+    const auto data = forms::data(d, spec.axisymmetric, spec.manufactured, _fields);
     const auto [mixed, pressure] = forms::space_factories(d, spec.degrees);
     _m.mesh = named;
     _m.axisymmetric = spec.axisymmetric;
@@ -74,22 +87,31 @@ public:
     _m.constants = zero_constants(data, "shared");
     for (const auto& [name, _] : named.region_of)
       _m.materials[name] = zero_constants(data, "material");
+    const int k = forms::field_degree(spec.degrees);
     for (const auto& [name, _] : named.tag_of)
+    {
       _m.loads[name] = zero_constants(data, "load");
+      _m.load_data_fields[name] = zero_fields(data, "load", k);
+    }
+    _m.data_fields = zero_fields(data, "shared", k);
     for (const auto& datum : data)
-      _m.sources.push_back({datum.group, datum.name, datum.key, datum.timed, datum.flag});
+      _m.sources.push_back(
+          {datum.group, datum.name, datum.key, datum.timed, datum.flag, datum.field});
     for (const auto& name : spec.contact)
     {
       const auto facets = named.boundary_facets(name);
       _m.contact_facets.insert(_m.contact_facets.end(), facets.begin(), facets.end());
     }
     _coefficients = {{"x", _m.x}, {"x_prev", _m.x_prev}};
+    _data = data;
+    add_fields(_coefficients, _m.data_fields, data);
   }
 
   Model build()
   {
     const int d = _named.mesh->geometry().dim();
-    for (const auto& term : forms::catalogue(d, _spec.axisymmetric, _spec.manufactured, _spec.degrees))
+    for (const auto& term :
+         forms::catalogue(d, _spec.axisymmetric, _spec.manufactured, _fields, _spec.degrees))
       for (const auto& piece : instances(term))
         place(term, piece);
     return std::move(_m);
@@ -106,6 +128,32 @@ private:
       list += (list.empty() ? "" : ", ") + std::to_string(ku) + "/" + std::to_string(kphi);
     throw DegreesNotCarried("the executable carries the degrees (u/phi) " + list
                             + "; `python3 -m piezocontact` compiles any degree");
+  }
+
+  /// A zero field for each datum of a group that may vary in space, on
+  /// spaces shared by the data of one shape
+  FunctionMap zero_fields(const std::vector<forms::Datum>& data, const std::string& group,
+                          int degree)
+  {
+    FunctionMap out;
+    for (const auto& datum : data)
+      if (datum.group == group and !datum.field.empty())
+      {
+        auto& V = _field_spaces[datum.shape];
+        if (!V)
+          V = compat::field_space(_named.mesh, degree, datum.shape);
+        out[datum.name] = std::make_shared<fem::Function<double>>(V);
+      }
+    return out;
+  }
+
+  /// Whether the config gives some datum that has a field by expressions
+  static bool needs_fields(const std::vector<forms::Datum>& data, const ModelSpec& spec)
+  {
+    const auto& keys = spec.expression_keys;
+    return std::any_of(data.begin(), data.end(), [&](const forms::Datum& datum)
+                       { return !datum.field.empty()
+                                and std::find(keys.begin(), keys.end(), datum.key) != keys.end(); });
   }
 
   bool sets(const std::string& boundary, const std::string& key) const
@@ -132,7 +180,8 @@ private:
     case Piece::boundary:
       for (const auto& [name, load] : _m.loads)
         if (term.where.empty() or sets(name, term.where))
-          out.push_back({name, _named.boundary_facets(name), true, merged({&_m.constants, &load})});
+          out.push_back({name, _named.boundary_facets(name), true, merged({&_m.constants, &load}),
+                         &_m.load_data_fields.at(name)});
       break;
     case Piece::contact:
       out.push_back({"", _m.contact_facets, true, shared});
@@ -161,8 +210,11 @@ private:
     const int rank = term.form->rank;
     std::vector<std::shared_ptr<const compat::FunctionSpace>> spaces(
         rank, term.space == forms::Space::P ? _m.P : _m.W);
+    Coefficients coefficients = _coefficients;
+    if (piece.fields)
+      add_fields(coefficients, *piece.fields, _data);
     const auto form = compat::create_form(
-        *term.form, spaces, _coefficients, piece.constants,
+        *term.form, spaces, coefficients, piece.constants,
         cells ? fem::IntegralType::cell : fem::IntegralType::exterior_facet,
         piece.marked ? &piece.entities : nullptr, _named.mesh);
     switch (term.role)
@@ -225,7 +277,10 @@ private:
   const NamedMesh& _named;
   const ModelSpec& _spec;
   Model _m;
-  Coefficients _coefficients;
+  Coefficients _coefficients; ///< x, x_prev and the shared data's fields
+  std::vector<forms::Datum> _data;
+  bool _fields = false; ///< the kernels with the fields of spatial data
+  std::map<std::vector<std::size_t>, std::shared_ptr<compat::FunctionSpace>> _field_spaces;
 };
 } // namespace
 

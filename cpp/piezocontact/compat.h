@@ -29,6 +29,7 @@
 #include <dolfinx/mesh/generation.h>
 #include <dolfinx/mesh/utils.h>
 #include <dolfinx/refinement/refine.h>
+#include <functional>
 #include <map>
 #include <memory>
 #include <numeric>
@@ -44,6 +45,7 @@
 #else
 #define PIEZO_DOLFINX_09 0
 #include <dolfinx/common/loguru.hpp>
+#include <xtensor/xarray.hpp>
 #include <xtensor/xtensor.hpp>
 #endif
 
@@ -321,6 +323,20 @@ inline std::shared_ptr<FunctionSpace> lagrange_space(std::shared_ptr<Mesh> mesh,
 #endif
 }
 
+/// The Lagrange space of a datum given by expressions (the forms' field of
+/// it): degree, and shape () or (d,). 0.9's create_form compares element
+/// hashes: its element is made as basix.ufl makes the forms'.
+inline std::shared_ptr<FunctionSpace> field_space(std::shared_ptr<Mesh> mesh, int degree,
+                                                  const std::vector<std::size_t>& shape)
+{
+  const int size = shape.empty() ? 1 : int(shape[0]);
+#if PIEZO_DOLFINX_09
+  return detail::space_of(mesh, detail::lagrange(*mesh, degree, size), shape);
+#else
+  return lagrange_space(mesh, degree, false, size);
+#endif
+}
+
 /// Cell-wise constant (DG0) space with `size` components (size > 1)
 inline std::shared_ptr<FunctionSpace> dg0_space(std::shared_ptr<Mesh> mesh, int size)
 {
@@ -351,6 +367,18 @@ locate_dofs_topological(const FunctionSpace& V0, const FunctionSpace& V1, int di
                                            {*V0.dofmap(), *V1.dofmap()}, dim, entities);
 #else
   return dfx::fem::locate_dofs_topological({V0, V1}, dim, entities);
+#endif
+}
+
+/// The nodes (dof blocks) of a space on some entities of dimension dim
+inline std::vector<std::int32_t> locate_nodes(const FunctionSpace& V, int dim,
+                                              std::span<const std::int32_t> entities)
+{
+#if PIEZO_DOLFINX_09
+  return dfx::fem::locate_dofs_topological(*V.mesh()->topology_mutable(), *V.dofmap(), dim,
+                                           entities);
+#else
+  return dfx::fem::locate_dofs_topological(V, dim, entities);
 #endif
 }
 

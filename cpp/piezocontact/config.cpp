@@ -1,4 +1,5 @@
 #include "config.h"
+#include "expressions.h"
 #include "json_input.h"
 #include "schema.h"
 
@@ -92,16 +93,33 @@ bool is_number_list(const json& v, std::size_t n)
          and std::all_of(v.begin(), v.end(), is_number);
 }
 
+/// Numbers as doubles; expressions (strings) and free components (null)
+/// as they are
 json to_doubles(const json& v)
 {
   if (v.is_array())
   {
     json out = json::array();
     for (const auto& item : v)
-      out.push_back(item.is_null() ? item : to_doubles(item));
+      out.push_back(item.is_null() or item.is_string() ? item : to_doubles(item));
     return out;
   }
-  return v.get<double>();
+  return v.is_string() ? v : json(v.get<double>());
+}
+
+/// An expression of x, y, z, t where the schema allows one ("expression"):
+/// parsed now, so that a bad one is refused at start-up with the parser's
+/// reason
+void check_expression(const json& value, const std::string& path, const std::string& source)
+{
+  try
+  {
+    SpaceTimeExpression(value.get<std::string>());
+  }
+  catch (const std::invalid_argument& e)
+  {
+    fail(source, path + ": " + fmt(value) + ": not an expression of x, y, z, t: " + e.what());
+  }
 }
 
 /// The dimensions a value may have: d, or 2 and 3 while d is not known
@@ -295,8 +313,14 @@ struct Check
 
   json number() const
   {
+    if (value.is_string() and rule.value("expression", false))
+    {
+      check_expression(value, path, source);
+      return value;
+    }
     if (!is_number(value))
-      wrong("a number");
+      wrong(rule.value("expression", false) ? "a number or an expression of x, y, z, t (a string)"
+                                            : "a number");
     check_bounds(value, rule, path, source);
     return value.get<double>();
   }
@@ -349,6 +373,7 @@ struct Check
   json vector() const
   {
     const bool nullable = rule.value("nullable", false);
+    const bool expressions = rule.value("expression", false);
     auto fits = [&](std::size_t n)
     {
       if (!value.is_array() or value.size() != n)
@@ -356,7 +381,7 @@ struct Check
       std::size_t given = 0;
       for (const auto& v : value)
       {
-        if (!(is_number(v) or (nullable and v.is_null())))
+        if (!(is_number(v) or (nullable and v.is_null()) or (expressions and v.is_string())))
           return false;
         given += !v.is_null();
       }
@@ -368,13 +393,19 @@ struct Check
       if (fits(n))
       {
         for (std::size_t i = 0; i < n; ++i)
-          if (!value[i].is_null())
-            check_bounds(value[i], rule, path + "[" + std::to_string(i) + "]", source);
+        {
+          const std::string at = path + "[" + std::to_string(i) + "]";
+          if (value[i].is_string())
+            check_expression(value[i], at, source);
+          else if (!value[i].is_null())
+            check_bounds(value[i], rule, at, source);
+        }
         return to_doubles(value);
       }
       options.push_back(std::to_string(n));
     }
     wrong("a list of " + either(options) + " numbers"
+          + (expressions ? " or expressions of x, y, z, t (strings)" : "")
           + (nullable ? ", null for a free component" : "")
           + (rule["length"] == "d" ? d ? " (the mesh is " + std::to_string(d) + "D)" : " (2D or 3D)" : ""));
   }
@@ -558,6 +589,10 @@ void check_manufactured(const json& cfg, const std::string& source)
       if (mms and bc.contains(key))
         fail(source, "boundaries." + name + "." + key + ": " + unused);
   }
+  if (mms and cfg.contains("contact") and cfg["contact"].value("gap", json()).is_string())
+    fail(source, "contact.gap = " + fmt(cfg["contact"]["gap"])
+                     + ": a manufactured solution's gap is a number (its forms have no "
+                       "fields of data given by expressions)");
 }
 
 // A material: a preset with one orientation, or explicit tensors with a
@@ -721,6 +756,26 @@ void check_semantics(const json& cfg, const std::string& source)
   check_held(cfg["boundaries"], source);
   check_electrodes(cfg, source);
   check_manufactured(cfg, source);
+}
+
+/// A component of a validated datum: a number, or an expression (parsed
+/// again: the config was checked, so it parses)
+Value value_from(const json& v)
+{
+  Value out;
+  if (v.is_string())
+    out.expression = std::make_shared<const SpaceTimeExpression>(v.get<std::string>());
+  else
+    out.number = v.get<double>();
+  return out;
+}
+
+/// Whether a datum's value holds an expression (it varies in space)
+bool varies(const json& v)
+{
+  if (v.is_array())
+    return std::any_of(v.begin(), v.end(), [](const json& c) { return varies(c); });
+  return v.is_string();
 }
 
 /// The value of a datum that may be timed ({"value": ..., "history": ...})
@@ -996,7 +1051,7 @@ RunSettings run_settings(const json& cfg)
       {
         d.displacement.emplace();
         for (const auto& c : value_of(bc["displacement"]))
-          d.displacement->push_back(c.is_null() ? std::nullopt : std::optional(c.get<double>()));
+          d.displacement->push_back(c.is_null() ? std::nullopt : std::optional(value_from(c)));
         d.displacement_history = history_of(bc["displacement"]);
       }
     }
@@ -1006,7 +1061,7 @@ RunSettings run_settings(const json& cfg)
         d.potential_exact = true;
       else
       {
-        d.potential = value_of(bc["potential"]).get<double>();
+        d.potential = value_from(value_of(bc["potential"]));
         d.potential_history = history_of(bc["potential"]);
       }
     }
@@ -1027,6 +1082,19 @@ ModelSpec model_spec(const json& cfg)
   ModelSpec spec;
   spec.manufactured = cfg.contains("manufactured");
   spec.axisymmetric = cfg.value("formulation", "") == "axisymmetric";
+  const auto note_expressions = [&](const json& entry, const std::string& prefix)
+  {
+    for (const auto& [key, value] : entry.items())
+      if (varies(value_of(value))
+          and std::find(spec.expression_keys.begin(), spec.expression_keys.end(), prefix + key)
+                  == spec.expression_keys.end())
+        spec.expression_keys.push_back(prefix + key);
+  };
+  for (const char* group : {"loads", "contact"})
+    if (cfg.contains(group) and cfg[group].is_object())
+      note_expressions(cfg[group], std::string(group) + ".");
+  for (const auto& [_, bc] : cfg["boundaries"].items())
+    note_expressions(bc, "");
   // (a summary written before "elements" existed has none: degree 1)
   const json elements = cfg.contains("elements") ? cfg["elements"] : json::object();
   const int degree = elements.value("degree", 1);
@@ -1143,10 +1211,30 @@ void set_constants(const json& cfg, const Model& model)
       const json* value = entry && !datum.key.empty() ? at_path(*entry, datum.key) : nullptr;
       if (value and !datum.flag.empty())
         set_value(*constants, datum.name, *value == datum.flag ? 1.0 : 0.0);
-      else if (value)
+      else if (value and !varies(value_of(*value))) // else its field carries it (spatial_loads)
         set_value(*constants, datum.name, value_of(*value));
     }
   set_value(model.constants, "k", cfg["time"]["T"].get<double>() / cfg["time"]["steps"].get<double>());
+}
+
+std::vector<SpatialLoad> spatial_loads(const json& cfg, const Model& model)
+{
+  std::vector<SpatialLoad> out;
+  for (const auto& datum : model.sources)
+    if (!datum.field.empty())
+      for (const auto& [piece, _] : pieces(model, datum.group))
+        if (const json* entry = entry_of(cfg, datum.group, piece))
+          if (const json* value = at_path(*entry, datum.key); value and varies(value_of(*value)))
+          {
+            SpatialDatum s;
+            s.key = (datum.group == "load" ? "boundaries." + piece + "." : "") + datum.key;
+            const json& v = value_of(*value);
+            for (const auto& c : v.is_array() ? v : json::array({v}))
+              s.components.push_back(value_from(c));
+            s.history = history_of(*value);
+            out.push_back({piece, datum.name, std::move(s)});
+          }
+  return out;
 }
 
 std::vector<TimedConstant> timed_constants(const json& cfg, const Model& model)

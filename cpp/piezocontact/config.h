@@ -57,6 +57,11 @@ ModelSpec model_spec(const json& cfg);
 /// (mesh.h check_names).
 void set_constants(const json& cfg, const Model& model);
 
+/// The data given by expressions (numbers that vary in space or time):
+/// the fields of the model to interpolate them into (Model::data_fields,
+/// load_data_fields), by piece and datum name. Their Constants stay zero.
+std::vector<SpatialLoad> spatial_loads(const json& cfg, const Model& model);
+
 /// The Constants whose config key carries a history (set_constants sets
 /// their value, the time loop scales it at every step)
 std::vector<TimedConstant> timed_constants(const json& cfg, const Model& model);

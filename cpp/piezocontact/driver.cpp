@@ -221,7 +221,8 @@ json run_config(const RunRequest& request, MPI_Comm comm, const ModelFactory& ma
   Model model = model_of(make_model, mesh, spec, request.source);
   set_constants(cfg, model);
   const auto timed = timed_constants(cfg, model);
-  Problem problem(std::move(model), settings.dirichlet, request.source, timed);
+  const auto spatial = spatial_loads(cfg, model);
+  Problem problem(std::move(model), settings.dirichlet, request.source, timed, spatial);
 
   json summary;
   if (request.resume)

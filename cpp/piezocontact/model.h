@@ -43,6 +43,7 @@ struct NamedMesh
 };
 
 using ConstantMap = std::map<std::string, std::shared_ptr<dolfinx::fem::Constant<double>>>;
+using FunctionMap = std::map<std::string, std::shared_ptr<dolfinx::fem::Function<double>>>;
 using FormList = std::vector<std::shared_ptr<const dolfinx::fem::Form<double>>>;
 
 /// The cell-wise output of one region (its material enters the expressions)
@@ -67,6 +68,10 @@ struct ConstantSource
   /// A switch: 1 where the key's value is this string, else 0 (empty: the
   /// value is the key's number or numbers)
   std::string flag;
+  /// A datum that may vary in space: the name of the forms' coefficient
+  /// (Model::data_fields, load_data_fields) that carries it when the config gives it
+  /// by expressions (empty: a Constant only)
+  std::string field;
 };
 
 /// What the model builders need of a run's config: which pieces of the
@@ -83,6 +88,10 @@ struct ModelSpec
   std::map<std::string, std::vector<std::string>> boundary_keys;
   /// The Lagrange degrees of u and phi (config "elements")
   std::array<int, 2> degrees = {1, 1};
+  /// The keys of the data the config gives by expressions (as the forms'
+  /// data name them: "contact.gap", "traction", ...): a model whose
+  /// spatial data are among them needs the kernels with their fields
+  std::vector<std::string> expression_keys;
   /// The axisymmetric formulation of a 2D mesh (its own kernels: the hoop
   /// strain, the weight 2 pi r); plane strain and stress share the plane
   /// kernels and differ in their materials (materials.h)
@@ -114,6 +123,11 @@ struct Model
   ConstantMap constants;
   /// Per region: its material's Constants; per named boundary: its loads'
   std::map<std::string, ConstantMap> materials, loads;
+  /// The fields of the shared data that may vary in space, and of each
+  /// named boundary's, by datum name (ConstantSource::field): zero unless
+  /// the config gives the datum by expressions (config.h spatial_loads)
+  FunctionMap data_fields;
+  std::map<std::string, FunctionMap> load_data_fields;
   /// Where each Constant's value comes from (config.h set_constants)
   std::vector<ConstantSource> sources;
   /// Local indices of the contact facets

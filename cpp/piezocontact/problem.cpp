@@ -2,6 +2,10 @@
 
 #include <algorithm>
 #include "config.h"
+#include "json_input.h"
+
+#include <limits>
+#include <numeric>
 
 #include <dolfinx/fem/assembler.h>
 #include <dolfinx/fem/utils.h>
@@ -38,9 +42,10 @@ Problem::Collapsed Problem::collapse(const compat::FunctionSpace& W, int i)
 }
 
 Problem::Problem(Model model_, const std::vector<DirichletSettings>& dirichlet,
-                 const std::string& source, const std::vector<TimedConstant>& timed)
+                 const std::string& source, const std::vector<TimedConstant>& timed,
+                 const std::vector<SpatialLoad>& spatial)
     : Problem(std::move(model_), collapse(*model_.W, 0), collapse(*model_.W, 1), dirichlet,
-              source, timed)
+              source, timed, spatial)
 {
 }
 
@@ -48,7 +53,7 @@ Problem::Problem(Model model_, const std::vector<DirichletSettings>& dirichlet,
 // initialiser, after the collapses above were evaluated
 Problem::Problem(Model&& model_, Collapsed u_, Collapsed phi_,
                  const std::vector<DirichletSettings>& dirichlet, const std::string& source,
-                 const std::vector<TimedConstant>& timed)
+                 const std::vector<TimedConstant>& timed, const std::vector<SpatialLoad>& spatial)
     : model(std::move(model_)), comm(model.mesh.mesh->comm()), mesh(model.mesh.mesh),
       W(model.W), V_u(u_.V), V_phi(phi_.V), u_dofs(std::move(u_.dofs)),
       phi_dofs(std::move(phi_.dofs)), x(model.x), x_prev(model.x_prev),
@@ -68,6 +73,16 @@ Problem::Problem(Model&& model_, Collapsed u_, Collapsed phi_,
                        .at(c.name)->value;
     _scaled.push_back({std::span(values), values, c.history});
   }
+  _source = source;
+  _extent = extent();
+  for (const auto& s : spatial) // a boundary's data on its nodes, the shared ones everywhere
+  {
+    const auto facets = s.boundary.empty() ? std::vector<std::int32_t>{}
+                                           : model.mesh.boundary_facets(s.boundary);
+    place_spatial(s.boundary.empty() ? model.data_fields.at(s.name)
+                                     : model.load_data_fields.at(s.boundary).at(s.name),
+                  s.datum, s.boundary.empty() ? nullptr : &facets);
+  }
   create_bcs(dirichlet, source);
   check_electrodes_apart(source);
   set_time(0.0, model.constants.at("k")->value.at(0));
@@ -86,6 +101,8 @@ void Problem::set_time(double t, double k)
     for (std::size_t i = 0; i < d.base.size(); ++i)
       d.values[i] = f * d.base[i];
   }
+  for (const auto& e : _evolving)
+    evaluate(e, t, e.datum.history.factor(t));
   if (u_exact)
     u_exact->interpolate(*model.u_exact);
   if (phi_exact)
@@ -219,12 +236,7 @@ la::Vector<double> Problem::assemble(const FormList& terms) const
 void Problem::fix_on_axis()
 {
   const int fdim = compat::topology(*mesh).dim() - 1;
-  const auto& geometry = mesh->geometry();
-  double size = 0.0;
-  for (std::size_t i = 0; i < geometry.x().size(); ++i)
-    size = std::max(size, std::abs(geometry.x().data()[i]));
-  MPI_Allreduce(MPI_IN_PLACE, &size, 1, MPI_DOUBLE, MPI_MAX, comm);
-  const double tol = 1e-12 * size;
+  const double tol = 1e-12 * _extent;
   const auto facets = compat::locate_boundary_facets(
       *mesh, [tol](double x, double, double) { return std::abs(x) <= tol; });
   auto zero = std::make_shared<fem::Function<double>>(V_u);
@@ -254,19 +266,29 @@ void Problem::create_bcs(const std::vector<DirichletSettings>& dirichlet,
       if (!bc.displacement_exact)
       {
         g = std::make_shared<fem::Function<double>>(V_u);
-        auto values = g->x()->mutable_array();
+        SpatialDatum datum{"boundaries." + bc.boundary + ".displacement", {},
+                           bc.displacement_history};
         for (int i = 0; i < dim; ++i)
         {
           const auto& c = bc.displacement->at(i);
           fixed[i] = c.has_value();
-          for (std::size_t j = i; j < values.size(); j += dim)
-            values[j] = c.value_or(0.0);
+          datum.components.push_back(c.value_or(Value{}));
+        }
+        if (std::any_of(datum.components.begin(), datum.components.end(),
+                        [](const Value& v) { return v.varies(); }))
+          place_spatial(g, datum, &facets);
+        else
+        {
+          auto values = g->x()->mutable_array();
+          for (int i = 0; i < dim; ++i)
+            for (std::size_t j = i; j < values.size(); j += dim)
+              values[j] = datum.components[i].number;
+          scale_in_time(g, bc.displacement_history);
         }
       }
       if (!g)
         throw ConfigError(source + ": boundaries." + bc.boundary
                           + ".displacement: \"exact\" needs a manufactured solution");
-      scale_in_time(g, bc.displacement_history);
       // one condition per fixed component, its values taken from g on V_u
       // (W->sub({0, i}) is not W.sub(0).sub(i) in 0.5.2: chain single levels)
       auto& comp = _clamped_dofs[bc.boundary];
@@ -288,13 +310,19 @@ void Problem::create_bcs(const std::vector<DirichletSettings>& dirichlet,
       if (!bc.potential_exact)
       {
         g = std::make_shared<fem::Function<double>>(V_phi);
-        std::fill(g->x()->mutable_array().begin(), g->x()->mutable_array().end(),
-                  *bc.potential);
+        if (bc.potential->varies())
+          place_spatial(g, {"boundaries." + bc.boundary + ".potential", {*bc.potential},
+                            bc.potential_history}, &facets);
+        else
+        {
+          std::fill(g->x()->mutable_array().begin(), g->x()->mutable_array().end(),
+                    bc.potential->number);
+          scale_in_time(g, bc.potential_history);
+        }
       }
       if (!g)
         throw ConfigError(source + ": boundaries." + bc.boundary
                           + ".potential: \"exact\" needs a manufactured solution");
-      scale_in_time(g, bc.potential_history);
       auto dofs = compat::locate_dofs_topological(*W_phi, *V_phi, fdim, facets);
       _bc_dofs.insert(_bc_dofs.end(), dofs[0].begin(), dofs[0].end());
       Electrode e;
@@ -463,6 +491,93 @@ void Problem::scale_in_time(const std::shared_ptr<fem::Function<double>>& g,
   _scaled_bc_values.push_back(g); // kept alive with its values
   const auto values = g->x()->mutable_array();
   _scaled.push_back({values, std::vector<double>(values.begin(), values.end()), history});
+}
+
+double Problem::extent() const
+{
+  const auto x = mesh->geometry().x();
+  double size = 0.0;
+  for (std::size_t i = 0; i < x.size(); ++i)
+    size = std::max(size, std::abs(x.data()[i]));
+  MPI_Allreduce(MPI_IN_PLACE, &size, 1, MPI_DOUBLE, MPI_MAX, comm);
+  return size;
+}
+
+namespace
+{
+std::string number(double v)
+{
+  return std::isnan(v) ? "nan" : std::isinf(v) ? (v > 0 ? "inf" : "-inf") : printable(json(v));
+}
+} // namespace
+
+void Problem::place_spatial(const std::shared_ptr<fem::Function<double>>& field,
+                            const SpatialDatum& datum, const std::vector<std::int32_t>* facets)
+{
+  const auto& V = *field->function_space();
+  Placed placed{field, datum, {}, {}};
+  if (facets)
+    placed.nodes = compat::locate_nodes(V, compat::topology(*mesh).dim() - 1, *facets);
+  else
+  {
+    const auto map = V.dofmap()->index_map;
+    placed.nodes.resize(map->size_local() + map->num_ghosts());
+    std::iota(placed.nodes.begin(), placed.nodes.end(), 0);
+  }
+  const std::vector<double> x = V.tabulate_dof_coordinates(false); // (nodes, 3)
+  for (auto node : placed.nodes)
+    for (int c = 0; c < 3; ++c)
+    {
+      // a node on a coordinate plane is there exactly (the push-forward
+      // leaves round-off, which 1/x or sqrt(x) on the axis would read)
+      const double xc = x[3 * node + c];
+      placed.points.push_back(std::abs(xc) < 1e-14 * _extent ? 0.0 : xc);
+    }
+  if (std::any_of(datum.components.begin(), datum.components.end(), [](const Value& v)
+                  { return v.varies() and v.expression->uses_time(); }))
+    return _evolving.push_back(std::move(placed)); // set_time evaluates it
+  evaluate(placed, 0.0, 1.0);
+  scale_in_time(field, datum.history);
+}
+
+void Problem::evaluate(const Placed& placed, double t, double factor) const
+{
+  const auto& components = placed.datum.components;
+  const int bs = placed.field->function_space()->dofmap()->index_map_bs();
+  if (std::size_t(bs) != components.size())
+    throw std::logic_error(placed.datum.key + ": " + std::to_string(components.size())
+                           + " components for a field of " + std::to_string(bs));
+  auto values = placed.field->x()->mutable_array();
+  std::string error;
+  for (std::size_t k = 0; k < placed.nodes.size(); ++k)
+  {
+    const std::array<double, 3> x
+        = {placed.points[3 * k], placed.points[3 * k + 1], placed.points[3 * k + 2]};
+    for (int i = 0; i < bs; ++i)
+    {
+      double& v = values[placed.nodes[k] * bs + i];
+      v = factor * components[i].at(x, t);
+      if (!std::isfinite(v) and error.empty())
+        error = (bs > 1 ? "[" + std::to_string(i) + "]" : "") + ": "
+                + printable(json(components[i].varies() ? components[i].expression->text() : ""))
+                + " is " + number(v) + " at (" + number(x[0]) + ", " + number(x[1]) + ", "
+                + number(x[2]) + ") at t = " + number(t);
+    }
+  }
+  // every rank throws the first rank's message (one line, exit 2)
+  int rank = 0, first = std::numeric_limits<int>::max();
+  MPI_Comm_rank(comm, &rank);
+  const int mine = error.empty() ? std::numeric_limits<int>::max() : rank;
+  MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, comm);
+  if (first == std::numeric_limits<int>::max())
+    return;
+  std::string message = printable(_source, 200) + ": " + placed.datum.key + error
+                        + ": a datum must be finite everywhere";
+  int length = message.size();
+  MPI_Bcast(&length, 1, MPI_INT, first, comm);
+  message.resize(length);
+  MPI_Bcast(message.data(), length, MPI_CHAR, first, comm);
+  throw ConfigError(message);
 }
 
 void Problem::update_fields()

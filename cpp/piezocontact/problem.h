@@ -54,9 +54,11 @@ class Problem
 public:
   /// Throws ConfigError if a setting names a boundary the mesh lacks.
   /// `timed`: the model's Constants that vary in time (their values as
-  /// set now are scaled by their history at every set_time)
+  /// set now are scaled by their history at every set_time); `spatial`:
+  /// the data given by expressions, interpolated into the model's fields
   Problem(Model model, const std::vector<DirichletSettings>& dirichlet,
-          const std::string& source, const std::vector<TimedConstant>& timed = {});
+          const std::string& source, const std::vector<TimedConstant>& timed = {},
+          const std::vector<SpatialLoad>& spatial = {});
 
   /// Copy the mixed solution x into the collapsed u and phi
   void update_fields();
@@ -167,7 +169,8 @@ private:
   };
   static Collapsed collapse(const compat::FunctionSpace& W, int i);
   Problem(Model&& model, Collapsed u, Collapsed phi, const std::vector<DirichletSettings>& dirichlet,
-          const std::string& source, const std::vector<TimedConstant>& timed);
+          const std::string& source, const std::vector<TimedConstant>& timed,
+          const std::vector<SpatialLoad>& spatial);
   std::vector<std::shared_ptr<const dolfinx::fem::DirichletBC<double>>> _bcs;
   std::vector<std::int32_t> _bc_dofs;
   std::map<std::string, std::vector<std::vector<std::int32_t>>> _clamped_dofs;
@@ -185,6 +188,29 @@ private:
   mutable double _load_amplitude = -1.0; ///< applied_load at factor 1; < 0: not yet
   double load_sum() const;
   std::vector<std::shared_ptr<dolfinx::fem::Function<double>>> _scaled_bc_values;
+  /// A datum given by expressions, placed on nodes of its field (the
+  /// nodes of its boundary, or all): their points, 3 coordinates each
+  struct Placed
+  {
+    std::shared_ptr<dolfinx::fem::Function<double>> field;
+    SpatialDatum datum;
+    std::vector<std::int32_t> nodes;
+    std::vector<double> points;
+  };
+  /// Those of them that use t: evaluated again at every set_time
+  std::vector<Placed> _evolving;
+  std::string _source;
+  double _extent = 0.0; ///< the largest |coordinate| of the mesh (its scale)
+  /// The largest |coordinate| over the ranks. Collective.
+  double extent() const;
+  /// Fill a field from a datum's expressions at the nodes on `facets` (all
+  /// nodes if null), now and at every set_time (once and scaled by its
+  /// history when no expression uses t). Collective.
+  void place_spatial(const std::shared_ptr<dolfinx::fem::Function<double>>& field,
+                     const SpatialDatum& datum, const std::vector<std::int32_t>* facets);
+  /// The field's values at the placed nodes: the datum at time t, times
+  /// factor; throws ConfigError where one is not finite. Collective.
+  void evaluate(const Placed& placed, double t, double factor) const;
   void fix_on_axis();
   void create_bcs(const std::vector<DirichletSettings>& dirichlet, const std::string& source);
   /// Throws ConfigError if a floating electrode shares a vertex with

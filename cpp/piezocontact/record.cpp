@@ -355,6 +355,20 @@ void Record::fail(const std::string& error)
   throw NewtonFailure(error);
 }
 
+void Record::refuse(const std::string& error)
+{
+  _summary["status"] = "failed";
+  _summary["error"] = error;
+  try
+  {
+    write_summary();
+  }
+  catch (const OutputError&)
+  {
+  }
+  throw ConfigError(error);
+}
+
 void Record::interrupt(int signum, const json& timing)
 {
   _summary["status"] = "interrupted";

@@ -96,6 +96,10 @@ public:
   std::size_t events() const;
   /// The summary says "failed" with `error`; throws NewtonFailure
   [[noreturn]] void fail(const std::string& error);
+  /// A datum of the config turned out bad at this step (an expression not
+  /// finite at t): status "failed" with the message, then throw it as the
+  /// ConfigError it is (exit 2)
+  [[noreturn]] void refuse(const std::string& error);
   /// The summary says "interrupted"; throws Interrupted
   [[noreturn]] void interrupt(int signum, const json& timing);
   /// Seconds spent writing outputs, per kind, for the summary's timing

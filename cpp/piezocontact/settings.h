@@ -2,6 +2,8 @@
 // the edge. Nothing below the config layer reads JSON input.
 #pragma once
 
+#include "expressions.h"
+
 #include <array>
 #include <optional>
 #include <string>
@@ -34,15 +36,34 @@ struct TimedConstant
   History history;
 };
 
+/// A datum that varies in space: the field it is interpolated into is
+/// `components` (numbers or expressions) times `history`, at every step.
+/// `key`: where the config gives it (messages)
+struct SpatialDatum
+{
+  std::string key;
+  std::vector<Value> components;
+  History history;
+};
+
+/// A datum of the forms given by expressions: the field of `name`
+/// (Model::data_fields, or load_data_fields of `boundary` when not empty)
+struct SpatialLoad
+{
+  std::string boundary, name;
+  SpatialDatum datum;
+};
+
 /// Dirichlet data on one named boundary; "exact" takes the model's exact
 /// field at the current time
 struct DirichletSettings
 {
   std::string boundary;
-  /// one value per component; an empty one is free (rollers, symmetry planes)
-  std::optional<std::vector<std::optional<double>>> displacement;
+  /// one value per component (a number or an expression); an empty one is
+  /// free (rollers, symmetry planes)
+  std::optional<std::vector<std::optional<Value>>> displacement;
   bool displacement_exact = false;
-  std::optional<double> potential;
+  std::optional<Value> potential;
   bool potential_exact = false;
   History displacement_history, potential_history;
   /// a floating electrode: phi is one unknown on the boundary, uniform,

@@ -274,7 +274,14 @@ private:
   /// du_{n-1}, phi^0 = phi_{n-1}; then the BCs
   void predict(double t, double k)
   {
-    _problem.set_time(t, k);
+    try
+    {
+      _problem.set_time(t, k);
+    }
+    catch (const ConfigError& e) // an expression of t not finite now
+    {
+      _record.refuse(e.what());
+    }
     for (auto d : _problem.u_dofs)
       _xa[d] = _xp[d] + k / _steps.k_last * (_xp[d] - _x_prev2[d]);
     _problem.hold_floating_potentials(_xp); // phi^0 = phi_{n-1} there too

@@ -67,17 +67,47 @@ def model_constants(msh, named, manufactured=False, axisymmetric=False):
             {boundary: zeros("load") for boundary in named.tag_of})
 
 
-def sources(dim, manufactured=False):
+def sources(dim, manufactured=False, fields=False):
     """Where each Constant's value comes from (the forms' declarations), as
-    the core takes them."""
+    the core takes them (`fields`: the spatial data have their fields)."""
     out = []
     for group, data in entry_points.data(dim, manufactured).items():
         for name, datum in data.items():
             s = cpp.ConstantSource()
             s.group, s.name, s.key, s.timed = group, name, datum.key or "", datum.timed
             s.flag = datum.flag or ""
+            s.field = pf.field_name(name) if datum.spatial and fields else ""
             out.append(s)
     return out
+
+
+def needs_fields(dim, spec):
+    """Whether the config gives some datum that has a field by expressions
+    (the forms then carry the fields; a manufactured run has none)."""
+    data = entry_points.data(dim, False)
+    return not spec.manufactured and any(
+        datum.spatial and datum.key in spec.expression_keys
+        for group in data.values() for datum in group.values())
+
+
+def model_fields(msh, named, degrees):
+    """The zero fields of the data that may vary in space (the core
+    interpolates a datum given by expressions into its field): the shared
+    data's, and each named boundary's loads', on one space per shape."""
+    groups = entry_points.data(msh.geometry.dim, False)
+    cell_name = compat.cell_name(msh.topology)
+    spaces = {}
+
+    def space(shape):
+        if shape not in spaces:
+            element = entry_points.lagrange(cell_name, entry_points.field_degree(degrees), shape)
+            spaces[shape] = compat.functionspace(msh, element)
+        return spaces[shape]
+
+    def zeros(group):
+        return {name: fem.Function(space(datum.shape), name=pf.field_name(name))
+                for name, datum in groups[group].items() if datum.spatial}
+    return zeros("shared"), {boundary: zeros("load") for boundary in named.tag_of}
 
 
 def set_constants(cfg, shared, materials, loads):
@@ -99,8 +129,8 @@ def _mark(msh, dim, entities):
     return dmesh.meshtags(msh, dim, entities, np.ones_like(entities))
 
 
-Spec = collections.namedtuple("Spec",
-                              "manufactured contact electrodes boundary_keys degrees axisymmetric")
+Spec = collections.namedtuple("Spec", "manufactured contact electrodes boundary_keys degrees "
+                              "axisymmetric expression_keys")
 
 
 class JitModel:
@@ -121,7 +151,7 @@ class JitModel:
         # a copy: the core's ModelSpec lives for the factory's call only
         self.spec = Spec(spec.manufactured, list(spec.contact), list(spec.electrodes),
                          {b: list(keys) for b, keys in spec.boundary_keys.items()},
-                         tuple(spec.degrees), spec.axisymmetric)
+                         tuple(spec.degrees), spec.axisymmetric, list(spec.expression_keys))
         self.mesh = msh = python_mesh(named)
         cell_name = compat.cell_name(msh.topology)
         _, mixed, pressure = elements(cell_name, *spec.degrees)
@@ -131,10 +161,14 @@ class JitModel:
         self.x_prev = fem.Function(self.W, name="x_prev")
         self.data, self.materials, self.loads = model_constants(msh, named, spec.manufactured,
                                                                 spec.axisymmetric)
-        self.sources = sources(msh.geometry.dim, spec.manufactured)
+        fields = needs_fields(msh.geometry.dim, self.spec)
+        self.sources = sources(msh.geometry.dim, spec.manufactured, fields)
+        self.fields, self.load_fields = (model_fields(msh, named, spec.degrees) if fields
+                                         else ({}, {b: {} for b in named.tag_of}))
         self.terms = terms.catalogue(msh.geometry.dim, spec.manufactured)
         self.kin = pf.Kinematics(spec.axisymmetric)
-        self.context = terms.Context(self.x, self.x_prev, ufl.TestFunction(self.W), self.data,
+        self.context = terms.Context(self.x, self.x_prev, ufl.TestFunction(self.W),
+                                     pf.with_fields(self.data, self.fields),
                                      law=contact_law or pf.p, q=ufl.TestFunction(self.P),
                                      kin=self.kin)
         self.dx_trial = ufl.TrialFunction(self.W)
@@ -160,6 +194,10 @@ class JitModel:
         return ufl.Measure("ds", domain=self.mesh,
                            subdomain_data=_mark(self.mesh, tdim - 1, facets))(1)
 
+    def _load(self, boundary):
+        """A boundary's data as its terms see them (Constants and fields)."""
+        return pf.with_fields(self.loads[boundary], self.load_fields[boundary])
+
     def _sets(self, boundary, key):
         return key in self.spec.boundary_keys.get(boundary, [])
 
@@ -172,8 +210,8 @@ class JitModel:
             return [(r, c.on(self._dx_on(named.region_cells(r)), mat=mat))
                     for r, mat in self.materials.items()]
         if term.piece == "boundary":
-            return [(b, c.on(self._ds_on(named.boundary_facets(b)), load=load))
-                    for b, load in self.loads.items()
+            return [(b, c.on(self._ds_on(named.boundary_facets(b)), load=self._load(b)))
+                    for b in self.loads
                     if term.where is None or self._sets(b, term.where)]
         if term.piece == "contact":
             return [("", c.on(self._ds_on(self.contact_facets)))]
@@ -206,7 +244,7 @@ class JitModel:
     def _hook_data(self):
         one = next(iter(self.materials.values())) if len(self.materials) == 1 else {}
         weight = self.kin.weight(self.mesh.ufl_domain()) if self.kin.axisymmetric else 1.0
-        return {**self.data, **one, "weight": weight}
+        return {**pf.with_fields(self.data, self.fields), **one, "weight": weight}
 
     def _hook(self, extra_residual):
         """The script's extra residual term, on the whole mesh."""
@@ -244,7 +282,7 @@ class JitModel:
                                           "an electrode and a region (the mesh's tags mark "
                                           "neither)")
             if term.piece == "boundary":
-                on = [c.on(ds(named.tag_of[b]), load=load) for b, load in self.loads.items()
+                on = [c.on(ds(named.tag_of[b]), load=self._load(b)) for b in self.loads
                       if term.where is None or self._sets(b, term.where)]
             else:
                 on = pieces[term.piece]
@@ -274,6 +312,8 @@ class JitModel:
         m.constants = cpp_map(self.data)
         m.materials = {r: cpp_map(mat) for r, mat in self.materials.items()}
         m.loads = {b: cpp_map(load) for b, load in self.loads.items()}
+        m.data_fields = cpp_map(self.fields)
+        m.load_data_fields = {b: cpp_map(fields) for b, fields in self.load_fields.items()}
         m.sources = self.sources
         m.contact_facets = self.contact_facets
         m.F, m.J, m.J_contact, m.L = ([c(f) for f in forms] for forms in

@@ -277,7 +277,10 @@ def run(model, problem, settings, output, summary, progress, observer=None):
         if signum:
             record.interrupt(signum, timing())
         t = n * k
-        problem.set_time(t, k)
+        try:
+            problem.set_time(t, k)
+        except cpp.ConfigError as e:  # an expression of t not finite now
+            record.refuse(str(e))
         x[:] = x_prev
         fem.petsc.set_bc(petsc_vec(model.x), newton.bcs)
         model.x.x.scatter_forward()
