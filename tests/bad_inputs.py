@@ -107,7 +107,7 @@ CASES = {
     "missing required key": ("NO_CP", [], "contact.c_p: missing required key"),
     "Dirichlet value neither numbers nor \"exact\"": (
         SQUARE, ["boundaries.left.displacement=5"],
-        "boundaries.left.displacement = 5: expected a list of 2 numbers, null for a free component (the mesh is 2D) or \"exact\""),
+        "boundaries.left.displacement = 5: expected a list of 2 numbers or expressions of x, y, z, t (strings), null for a free component (the mesh is 2D) or \"exact\""),
     "\"exact\" without a manufactured solution": (
         SQUARE, ["boundaries.left.potential=exact"],
         "boundaries.left.potential = \"exact\": needs the key manufactured "
@@ -133,7 +133,8 @@ CASES = {
         "material.poling = [0.0,0.0]: must be a nonzero direction"),
     "a 2D vector on a 3D mesh": (
         SLAB, ["boundaries.top.traction=[0,-10]"],
-        "boundaries.top.traction = [0,-10]: expected a list of 3 numbers (the mesh is 3D)"),
+        "boundaries.top.traction = [0,-10]: expected a list of 3 numbers or expressions of x, y, z, t "
+        "(strings) (the mesh is 3D)"),
     "a region the mesh lacks": (
         BILAYER, ['regions.core={"preset":"PZT-4","poling":[0,1]}'],
         "regions.core: the mesh has no region 'core' (it has: film, substrate)"),
@@ -159,7 +160,77 @@ CASES = {
     "a floating charge that is not a number": (
         SQUARE, ['boundaries.right={"floating":{"charge":"1e-9"}}'],
         "boundaries.right.floating.charge = \"1e-9\": expected a number"),
+    # data that vary in space: the parser's reason, and values that are not finite
+    "an expression with an unknown name": (
+        SQUARE, ['boundaries.top.traction=["-2e10*yy", 0]'],
+        "boundaries.top.traction[0]: \"-2e10*yy\": not an expression of x, y, z, t: "
+        "Unexpected token \"yy\" found at position 6."),
+    "an unfinished expression": (
+        SQUARE, ['loads.charge_density="1e-3*(x+"'],
+        "loads.charge_density: \"1e-3*(x+\": not an expression of x, y, z, t: "),
+    "two values in one expression": (
+        SQUARE, ['contact.gap="1e-6, 2e-6"'],
+        "contact.gap: \"1e-6, 2e-6\": not an expression of x, y, z, t: 2 values separated "
+        "by commas: a datum takes one"),
+    "an assignment in an expression": (
+        SQUARE, ['boundaries.left.potential="y=1"'],
+        "boundaries.left.potential: \"y=1\": not an expression of x, y, z, t: \"=\" assigns "
+        "in muparser: write == for a comparison"),
+    "an expression that is not finite on its boundary": (
+        SQUARE, ['boundaries.top.traction=["1/x", 0]'],
+        "boundaries.top.traction[0]: \"1/x\" is inf at (0.0, 1.0"),
+    "an expression in a manufactured run": (
+        MMS, ['contact.gap="1e-11*x"'],
+        "contact.gap = \"1e-11*x\": a manufactured solution's gap is a number"),
+    # the 2D formulations
+    "a formulation on a 3D mesh": (
+        SLAB, ["formulation=plane_stress"],
+        "formulation: \"plane_stress\": a formulation of 2D meshes (the mesh is 3D)"),
+    "an unknown formulation": (
+        SQUARE, ["formulation=plane"],
+        "formulation = \"plane\": expected one of plane_strain, plane_stress, axisymmetric"),
+    "plane tensors in axisymmetry": (
+        SQUARE, ["formulation=axisymmetric"],
+        "material.elastic: a 3x3 matrix does not fit the axisymmetric formulation: it takes "
+        "4x4 (reduced) or 6x6 (the 3D tensor, reduced by the formulation)"),
+    "tensors of two shapes in one material": (
+        SQUARE, ['material={"elastic":[[1e11,5e10,5e10,0,0,0],[5e10,1e11,5e10,0,0,0],'
+                 '[5e10,5e10,1e11,0,0,0],[0,0,0,2e10,0,0],[0,0,0,0,2e10,0],[0,0,0,0,0,2e10]],'
+                 '"relaxation_time":0.1,"piezoelectric":[[0,0,1],[1,1,0]],'
+                 '"permittivity":[[1e-8,0],[0,1e-8]]}'],
+        "material.permittivity: a 2x2 matrix with a 6x6 elastic tensor: one material's "
+        "tensors have one shape (3x3 here)"),
+    "a material that drives torsion in axisymmetry": (
+        SQUARE, ["formulation=axisymmetric",
+                 'material={"preset":"PZT-5H","euler":[0,30,0]}'],
+        "material: axisymmetric: it couples the axisymmetric strains or fields to torsion"),
+    "an axisymmetric mesh across the axis": (
+        "ACROSS_AXIS", ["formulation=axisymmetric"],
+        "formulation: axisymmetric: the mesh has points at x = r < 0 (down to -1.0 m): an "
+        "axisymmetric mesh lies in the half-plane x >= 0, y the axis"),
 }
+
+
+def write_rectangle_msh(path, lo, hi):
+    """A gmsh .msh of the rectangle lo-hi, its bottom edge named "bottom"."""
+    import gmsh
+    gmsh.initialize()
+    gmsh.option.setNumber("General.Terminal", 0)
+    try:
+        gmsh.model.add("rectangle")
+        r = gmsh.model.occ.addRectangle(lo[0], lo[1], 0, hi[0] - lo[0], hi[1] - lo[1])
+        gmsh.model.occ.synchronize()
+        bottom = [c for _, c in gmsh.model.getEntities(1)
+                  if gmsh.model.getBoundingBox(1, c)[4] < lo[1] + 1e-6]  # OCC pads boxes
+        gmsh.model.addPhysicalGroup(1, bottom, 1)
+        gmsh.model.setPhysicalName(1, 1, "bottom")
+        gmsh.model.addPhysicalGroup(2, [r], 1)
+        gmsh.model.setPhysicalName(2, 1, "body")
+        gmsh.option.setNumber("Mesh.MeshSizeMax", 0.5)
+        gmsh.model.mesh.generate(2)
+        gmsh.write(str(path))
+    finally:
+        gmsh.finalize()
 
 
 def materialise(case, tmp):
@@ -200,6 +271,14 @@ def materialise(case, tmp):
         cfg = json.loads(SQUARE.read_text())
         del cfg["contact"]["c_p"]
         config = tmp / "no_cp.json"
+        config.write_text(json.dumps(cfg))
+    elif config == "ACROSS_AXIS":  # a rectangle -1 <= x <= 1: half of it at r < 0
+        config = tmp / "across.json"
+        write_rectangle_msh(tmp / "across.msh", (-1.0, 0.0), (1.0, 1.0))
+        cfg = {"mesh": {"type": "msh", "path": "across.msh"},
+               "material": {"preset": "PZT-5H", "poling": [0, 1]},
+               "boundaries": {"bottom": {"displacement": [None, 0.0], "potential": 0.0}},
+               "time": {"T": 1.0, "steps": 1}}
         config.write_text(json.dumps(cfg))
     if case == "mesh file unreadable":
         (tmp / "broken.xdmf").write_text("<Xdmf>not a mesh</Xdmf>\n")

@@ -595,6 +595,28 @@ void check_manufactured(const json& cfg, const std::string& source)
                        "fields of data given by expressions)");
 }
 
+/// The Voigt length of a material's tensors (elastic's; 3D 6, plane 3,
+/// axisymmetric 4) and their vector dimension, each tensor checked against
+/// it: one material, one shape
+std::pair<std::size_t, std::size_t> material_shape(const json& mat, const std::string& path,
+                                                   const std::string& source)
+{
+  const std::size_t strains = mat["elastic"].size(), dim = strains == 6 ? 3 : 2;
+  const auto shape = [](const json& m)
+  { return std::to_string(m.size()) + "x" + std::to_string(m[0].size()); };
+  const std::map<std::string, std::pair<std::size_t, std::size_t>> expected = {
+      {"viscosity", {strains, strains}},
+      {"piezoelectric", {dim, strains}},
+      {"permittivity", {dim, dim}}};
+  for (const auto& [key, rc] : expected)
+    if (mat.contains(key) and (mat[key].size() != rc.first or mat[key][0].size() != rc.second))
+      fail(source, join(path, key) + ": a " + shape(mat[key]) + " matrix with a "
+                       + shape(mat["elastic"]) + " elastic tensor: one material's tensors "
+                       + "have one shape (" + std::to_string(rc.first) + "x"
+                       + std::to_string(rc.second) + " here)");
+  return {strains, dim};
+}
+
 // A material: a preset with one orientation, or explicit tensors with a
 // viscosity or a relaxation time
 void check_material(const json& spec, const std::string& path, const std::string& source)
@@ -639,14 +661,9 @@ void check_material(const json& spec, const std::string& path, const std::string
     check_spd(spec["viscosity"].get<Matrix>(), join(path, "viscosity"), source,
               "viscosity must be positive definite (2.11c)");
   check_symmetric(spec["elastic"].get<Matrix>(), join(path, "elastic"), source);
-  // one dimension for all of a material's tensors (while d is not known)
-  const std::size_t d = spec["permittivity"].size(), m = d == 2 ? 3 : 6;
-  if (spec["elastic"].size() != m or spec["piezoelectric"].size() != d
-      or (spec.contains("viscosity") and spec["viscosity"].size() != m))
-    fail(source, path + ": permittivity is " + std::to_string(d) + "x" + std::to_string(d)
-                     + ": give every tensor in " + std::to_string(d) + "D (elastic "
-                     + std::to_string(m) + "x" + std::to_string(m) + ", piezoelectric "
-                     + std::to_string(d) + "x" + std::to_string(m) + ")");
+  // one shape for all of a material's tensors (the formulation's fit is
+  // checked once the mesh's dimension is known: check_dimension)
+  material_shape(spec, path, source);
 }
 
 // The potential is known only up to a constant unless some boundary holds
@@ -941,28 +958,6 @@ json configure(json cfg, const std::vector<std::string>& overrides,
 
 namespace
 {
-/// The Voigt length of a material's tensors (elastic's; 3D 6, plane 3,
-/// axisymmetric 4) and their vector dimension, each tensor checked against
-/// it: one material, one shape
-std::pair<std::size_t, std::size_t> material_shape(const json& mat, const std::string& path,
-                                                   const std::string& source)
-{
-  const std::size_t strains = mat["elastic"].size(), dim = strains == 6 ? 3 : 2;
-  const auto shape = [](const json& m)
-  { return std::to_string(m.size()) + "x" + std::to_string(m[0].size()); };
-  const std::map<std::string, std::pair<std::size_t, std::size_t>> expected = {
-      {"viscosity", {strains, strains}},
-      {"piezoelectric", {dim, strains}},
-      {"permittivity", {dim, dim}}};
-  for (const auto& [key, rc] : expected)
-    if (mat.contains(key) and (mat[key].size() != rc.first or mat[key][0].size() != rc.second))
-      fail(source, join(path, key) + ": a " + shape(mat[key]) + " matrix with a "
-                       + shape(mat["elastic"]) + " elastic tensor: one material's tensors "
-                       + "have one shape (" + std::to_string(rc.first) + "x"
-                       + std::to_string(rc.second) + " here)");
-  return {strains, dim};
-}
-
 /// The formulation of a 2D mesh, and the shapes it takes for explicit
 /// tensors: its reduced shape or the 3D one (which it reduces)
 void check_formulation_of_materials(const json& cfg, const std::string& source)

@@ -31,7 +31,7 @@ def engine_loop(engine, keep, observer=None):
 
 
 def solve(config, output, engine="cpp", extra_residual=None, contact_law=None, overrides=(),
-          progress=True, comm=MPI.COMM_WORLD, observer=None):
+          progress=True, comm=MPI.COMM_WORLD, observer=None, data=None):
     """Run the model of `config` (a path or a dict) and write `output`.
 
     engine: "cpp" (the C++ time loop on JIT-compiled forms) or "reference"
@@ -39,6 +39,9 @@ def solve(config, output, engine="cpp", extra_residual=None, contact_law=None, o
     extra_residual(u, phi, w, psi, data): a UFL form added to the residual;
       the Jacobian follows by differentiation.
     contact_law(r, c_p): replaces the normal compliance law p.
+    data: {config key: f(x, t)}: loads, charges or the gap as UFL
+      expressions of x = ufl.SpatialCoordinate and the time t, added to
+      the config's value of that key (model.JitModel lists the keys).
     observer(step, record): called after each accepted step.
     Returns the summary (the dict written to output/summary.json). Raises
     ConfigError, NewtonFailure, OutputError, Interrupted (piezocontact.cpp)."""
@@ -51,6 +54,6 @@ def solve(config, output, engine="cpp", extra_residual=None, contact_law=None, o
         def on_step(n, record):
             observer(n, json.loads(record))
     summary = cpp.run_config(json.dumps(cfg), str(output), source, ENGINES[engine], progress,
-                             None, comm, model.factory(extra_residual, contact_law, keep),
+                             None, comm, model.factory(extra_residual, contact_law, keep, data),
                              mesh_tools.convert, loop, on_step)
     return json.loads(summary)

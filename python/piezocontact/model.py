@@ -144,9 +144,16 @@ class JitModel:
         the material's (Bv, Av, e, beta), and "weight": the formulation's
         weight of an integral (2 pi r in axisymmetry, where a hook's
         integrals are per revolution as the model's are, 1 otherwise);
-      contact_law(r, c_p) -> UFL expression replacing the law p."""
+      contact_law(r, c_p) -> UFL expression replacing the law p;
+      data: {config key: f(x, t)}, a datum that may vary in space given as
+        a UFL expression of x = ufl.SpatialCoordinate (x[0] = r in
+        axisymmetry) and the time t (a Constant the core sets every step),
+        evaluated by the forms at their quadrature points; it adds to what
+        the config gives for that key. Keys: "loads.body_force",
+        "loads.charge_density", "contact.gap",
+        "boundaries.NAME.traction", "boundaries.NAME.surface_charge"."""
 
-    def __init__(self, named, spec, extra_residual=None, contact_law=None):
+    def __init__(self, named, spec, extra_residual=None, contact_law=None, data=None):
         self.named = named
         # a copy: the core's ModelSpec lives for the factory's call only
         self.spec = Spec(spec.manufactured, list(spec.contact), list(spec.electrodes),
@@ -167,8 +174,9 @@ class JitModel:
                                          else ({}, {b: {} for b in named.tag_of}))
         self.terms = terms.catalogue(msh.geometry.dim, spec.manufactured)
         self.kin = pf.Kinematics(spec.axisymmetric)
+        self.ufl_data = self._ufl_data(data or {})
         self.context = terms.Context(self.x, self.x_prev, ufl.TestFunction(self.W),
-                                     pf.with_fields(self.data, self.fields),
+                                     pf.with_fields(self.data, self._fields_of("")),
                                      law=contact_law or pf.p, q=ufl.TestFunction(self.P),
                                      kin=self.kin)
         self.dx_trial = ufl.TrialFunction(self.W)
@@ -196,7 +204,49 @@ class JitModel:
 
     def _load(self, boundary):
         """A boundary's data as its terms see them (Constants and fields)."""
-        return pf.with_fields(self.loads[boundary], self.load_fields[boundary])
+        return pf.with_fields(self.loads[boundary], self._fields_of(boundary))
+
+    def _fields_of(self, piece):
+        """The parts that vary in space of a piece's data ("": the shared
+        ones): the fields of the config's expressions plus the hook's UFL."""
+        fields = dict(self.fields if piece == "" else self.load_fields[piece])
+        for name, expr in self.ufl_data.get(piece, {}).items():
+            fields[name] = fields[name] + expr if name in fields else expr
+        return fields
+
+    def _ufl_data(self, data):
+        """{piece ("" shared, or a boundary): {datum name: UFL expression}}
+        of the `data` hook; the time Constant "t" joins the shared data."""
+        groups = entry_points.data(self.mesh.geometry.dim, False)
+        shared = {d.key: n for n, d in groups["shared"].items() if d.spatial}
+        load = {d.key: n for n, d in groups["load"].items() if d.spatial}
+        out = {"": {}}
+        if data and "t" not in self.data:
+            self.data["t"] = _constant(self.mesh, ())
+            s = cpp.ConstantSource()
+            s.group, s.name = "shared", "t"
+            self.sources.append(s)
+        x = ufl.SpatialCoordinate(self.mesh)
+        for key, f in data.items():
+            parts = key.split(".")
+            if key in shared:
+                piece, name = "", shared[key]
+                shape = groups["shared"][name].shape
+            elif len(parts) == 3 and parts[0] == "boundaries" and parts[2] in load:
+                if parts[1] not in self.loads:
+                    raise ValueError(f"data: {key}: the mesh has no boundary {parts[1]!r}")
+                piece, name = parts[1], load[parts[2]]
+                shape = groups["load"][name].shape
+            else:
+                raise ValueError(f"data: {key!r}: not a datum that varies in space (one of "
+                                 f"{', '.join(sorted(shared))}, boundaries.NAME."
+                                 f"{{{', '.join(sorted(load))}}})")
+            expr = ufl.as_ufl(f(x, self.data["t"]))
+            if expr.ufl_shape != shape:
+                raise ValueError(f"data: {key}: a UFL expression of shape {expr.ufl_shape}, "
+                                 f"expected {shape}")
+            out.setdefault(piece, {})[name] = expr
+        return out
 
     def _sets(self, boundary, key):
         return key in self.spec.boundary_keys.get(boundary, [])
@@ -244,7 +294,7 @@ class JitModel:
     def _hook_data(self):
         one = next(iter(self.materials.values())) if len(self.materials) == 1 else {}
         weight = self.kin.weight(self.mesh.ufl_domain()) if self.kin.axisymmetric else 1.0
-        return {**pf.with_fields(self.data, self.fields), **one, "weight": weight}
+        return {**pf.with_fields(self.data, self._fields_of("")), **one, "weight": weight}
 
     def _hook(self, extra_residual):
         """The script's extra residual term, on the whole mesh."""
@@ -343,12 +393,12 @@ class JitModel:
         return m
 
 
-def factory(extra_residual=None, contact_law=None, keep=None):
+def factory(extra_residual=None, contact_law=None, keep=None, data=None):
     """A model factory for the C++ driver: (NamedMesh, ModelSpec) -> Model.
     The JitModel is appended to `keep` (its Python objects must outlive the
     run, and the reference engine works on them)."""
     def make(named, spec):
-        model = JitModel(named, spec, extra_residual, contact_law)
+        model = JitModel(named, spec, extra_residual, contact_law, data)
         if keep is not None:
             keep.append(model)
         return model.cpp_model()

@@ -18,6 +18,8 @@ DEMOS = {
     "python_api": [PY, "demos/demo_python_api.py"],
     "manufactured_rates": [PY, "demos/manufactured_rates.py", "--finest", "16"],
     "convergence_study": [PY, "demos/convergence_study.py", "--finest", "16"],
+    "disc": [PY, "demos/demo_disc.py"],
+    "plate": [PY, "demos/demo_plate.py", "--set", "mesh.n=8"],
 }
 
 

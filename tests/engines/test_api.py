@@ -88,3 +88,26 @@ def test_bad_input_raises_the_validators_message(tmp_path, engine):
         piezocontact.solve(SQUARE, tmp_path, engine=engine, overrides=["time.steps=0"])
     assert str(e.value).startswith(f"{SQUARE}: time.steps = 0")
     assert not (tmp_path / "summary.json").exists()
+
+
+@pytest.mark.parametrize("engine", ["cpp", "reference"])
+def test_data_as_ufl_expressions(tmp_path, engine):
+    """A traction given as a UFL expression of x and t (the `data` hook,
+    evaluated by the forms at their quadrature points) and the same
+    traction as a config expression (interpolated at the P1 nodes: exact
+    for it, linear in x) with its history: one answer, to round-off; and
+    a datum the hook cannot take is refused naming it."""
+    traction = ["-20*x", "-10*min(2*t, 1)"]
+    by_config = piezocontact.solve(SQUARE, tmp_path / "config", progress=False, engine=engine,
+                                   overrides=SMALL + [f"boundaries.top.traction={json.dumps(traction)}"])
+
+    def top(x, t):
+        return ufl.as_vector([-20 * x[0], -10 * ufl.min_value(2 * t, 1)])
+    by_ufl = piezocontact.solve(SQUARE, tmp_path / "ufl", progress=False, engine=engine,
+                                overrides=SMALL + ["boundaries.top.traction=[0, 0]"],
+                                data={"boundaries.top.traction": top})
+    for d in compare.probe_differences(by_config, by_ufl):
+        assert d["u"] < 1e-12 and d["phi"] < 1e-12, d
+    with pytest.raises(ValueError, match="data: 'boundaries.top.potential': not a datum"):
+        piezocontact.solve(SQUARE, tmp_path / "bad", progress=False, engine=engine,
+                           overrides=SMALL, data={"boundaries.top.potential": top})

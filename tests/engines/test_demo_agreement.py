@@ -22,6 +22,8 @@ SMALL = {  # the smallest honest size of each: every feature it has still at wor
     "slab.json": ["mesh.n=[4,4,1]", "time.steps=4"],
     "manufactured.json": ["mesh.n=4", "time.steps=4"],
     "manufactured_3d.json": ["mesh.n=[2,2,2]", "time.steps=2"],
+    "disc.json": ["mesh.size=1e-3", "time.steps=4"],
+    "plate.json": ["mesh.n=4", "time.steps=3"],
 }
 
 

@@ -394,3 +394,25 @@ def test_engines_agree_in_every_formulation(tmp_path, formulation):
         diffs = compare.field_differences(tmp_path / "cpp", tmp_path / other, runs[other])
         for step, d in diffs.items():
             assert d["u"] < 1e-9 and d["phi"] < 1e-9, (other, step, d)
+
+
+# -- plane stress: a thin 3D plate tends to it -----------------------------
+
+def test_thin_3d_plates_tend_to_plane_stress(tmp_path):
+    """The plate of demos/plate.json (clamped in its plane, pulled and bent
+    by an expression traction) in 3D, half of its thickness t with the
+    mid-plane on rollers, at degree 2: the tip deflection and the charge
+    per unit thickness approach plane stress as t falls (measured at n = 8:
+    0.11 %, 0.02 % at t = 0.2, 0.05), never plane strain (31 % off)."""
+    from demo_plate import answer, plate_3d
+    plate = json.loads((ROOT / "demos" / "plate.json").read_text())
+    plate["mesh"]["n"] = 8
+    plate["time"]["steps"] = 1
+    stress = answer(run(tmp_path, plate, name="stress"))
+    strain = answer(run(tmp_path, dict(plate, formulation="plane_strain"), name="strain"))
+    off = []
+    for t in (0.2, 0.05):
+        a = answer(run(tmp_path, plate_3d(plate, t, 8), name=f"plate{t}"), t / 2)
+        off.append(max(abs(a[k] / stress[k] - 1) for k in a))
+    assert off[1] < off[0] / 2 and off[1] < 1e-3, off
+    assert min(abs(strain[k] / stress[k] - 1) for k in strain) > 0.2
