@@ -7,11 +7,10 @@ reads the .msh as it is (`"mesh": {"type": "msh", "path": "bilayer.msh"}`).
     /usr/bin/python3 meshes/bilayer_msh.py [--size 0.0625] [--output demos/bilayer.msh]
 """
 
-import argparse
 from pathlib import Path
 
 import gmsh
-from physical_groups import name_groups
+from physical_groups import msh_script, name_groups
 
 
 def build(size):
@@ -33,23 +32,6 @@ def build(size):
     gmsh.model.mesh.generate(2)
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--size", type=float, default=1 / 16)
-    ap.add_argument("--output", type=Path,
-                    default=Path(__file__).resolve().parents[1] / "demos" / "bilayer.msh")
-    args = ap.parse_args()
-    gmsh.initialize()
-    gmsh.option.setNumber("General.Terminal", 0)
-    gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
-    try:
-        gmsh.model.add("bilayer")
-        build(args.size)
-        gmsh.write(str(args.output))
-    finally:
-        gmsh.finalize()
-    print(f"wrote {args.output}")
-
-
 if __name__ == "__main__":
-    main()
+    msh_script("bilayer", build, __doc__, 1 / 16,
+               Path(__file__).resolve().parents[1] / "demos" / "bilayer.msh")

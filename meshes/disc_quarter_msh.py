@@ -9,11 +9,9 @@ volume "disc". Written as a gmsh .msh file (config "type": "msh").
     /usr/bin/python3 meshes/disc_quarter_msh.py --size 1e-3 --output disc_quarter.msh
 """
 
-import argparse
-from pathlib import Path
 
 import gmsh
-from physical_groups import name_groups
+from physical_groups import msh_script, name_groups
 
 R, T = 10e-3, 2e-3
 
@@ -49,23 +47,5 @@ def build(size):
     gmsh.model.mesh.generate(3)
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--size", type=float, default=1e-3)
-    ap.add_argument("--output", type=Path, required=True)
-    args = ap.parse_args()
-    gmsh.initialize()
-    gmsh.option.setNumber("General.Terminal", 0)
-    gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
-    gmsh.option.setNumber("Mesh.Binary", 1)
-    try:
-        gmsh.model.add("disc_quarter")
-        build(args.size)
-        gmsh.write(str(args.output))
-    finally:
-        gmsh.finalize()
-    print(f"wrote {args.output}")
-
-
 if __name__ == "__main__":
-    main()
+    msh_script("disc_quarter", build, __doc__, 1e-3, binary=True)

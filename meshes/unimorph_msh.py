@@ -7,11 +7,10 @@ interface, an interior face), "contact" (the substrate's bottom, z = 0).
     /usr/bin/python3 meshes/unimorph_msh.py [--size 0.5e-3] [--output demos/unimorph.msh]
 """
 
-import argparse
 from pathlib import Path
 
 import gmsh
-from physical_groups import name_groups
+from physical_groups import msh_script, name_groups
 
 L, W, T_SUB, T_PZT = 10e-3, 2e-3, 0.5e-3, 0.25e-3
 
@@ -40,24 +39,6 @@ def build(size):
     gmsh.model.mesh.generate(3)
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--size", type=float, default=0.5e-3)
-    ap.add_argument("--output", type=Path,
-                    default=Path(__file__).resolve().parents[1] / "demos" / "unimorph.msh")
-    args = ap.parse_args()
-    gmsh.initialize()
-    gmsh.option.setNumber("General.Terminal", 0)
-    gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
-    gmsh.option.setNumber("Mesh.Binary", 1)
-    try:
-        gmsh.model.add("unimorph")
-        build(args.size)
-        gmsh.write(str(args.output))
-    finally:
-        gmsh.finalize()
-    print(f"wrote {args.output}")
-
-
 if __name__ == "__main__":
-    main()
+    msh_script("unimorph", build, __doc__, 0.5e-3,
+               Path(__file__).resolve().parents[1] / "demos" / "unimorph.msh", binary=True)

@@ -312,6 +312,11 @@ def main():
             "memory` (a MUMPS workspace under-estimate names `mat_mumps_icntl_14`); a "
             "failed solve before the first step (the first Jacobian's) ends the run the "
             "same way. Checked by `tests/engines/test_linear_solver.py`.\n",
+            "An expression of t that is finite at start-up but not at a later step "
+            "(`\"1/(1-t)\"` at t = 1) stops the run at that step with exit code 2 and the "
+            "same kind of line (`boundaries.top.traction[0]: \"1/(1-t)\" is inf at (1.0, 1.0, "
+            "0.0) at t = 1.0: a datum must be finite everywhere`); summary.json says "
+            "\"failed\" with it and keeps the steps before.\n",
             "A write error (a full disk) stops the run with exit code 4 and one line, "
             "`error: cannot write FILE: No space left on device`; summary.json says "
             "\"failed\" with that error when there is room for it, and every earlier step "

@@ -141,17 +141,22 @@ void Record::write_summary()
 }
 
 // A write error ends the run; the summary says so if it can still be written
-void Record::fail_on_output(const OutputError& e)
+void Record::mark_failed(const std::string& error)
 {
   _summary["status"] = "failed";
-  _summary["error"] = e.what();
+  _summary["error"] = error;
   try
   {
     write_summary();
   }
-  catch (const OutputError&)
+  catch (const OutputError&) // the error already being reported says why
   {
   }
+}
+
+void Record::fail_on_output(const OutputError& e)
+{
+  mark_failed(e.what());
   throw e;
 }
 
@@ -343,29 +348,13 @@ std::size_t Record::events() const { return _summary["events"].size(); }
 
 void Record::fail(const std::string& error)
 {
-  _summary["status"] = "failed";
-  _summary["error"] = error;
-  try
-  {
-    write_summary();
-  }
-  catch (const OutputError&)
-  {
-  }
+  mark_failed(error);
   throw NewtonFailure(error);
 }
 
 void Record::refuse(const std::string& error)
 {
-  _summary["status"] = "failed";
-  _summary["error"] = error;
-  try
-  {
-    write_summary();
-  }
-  catch (const OutputError&)
-  {
-  }
+  mark_failed(error);
   throw ConfigError(error);
 }
 

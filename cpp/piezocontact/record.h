@@ -109,6 +109,8 @@ public:
 
 private:
   void write_summary();
+  /// status "failed" with `error`, the summary written if it can be
+  void mark_failed(const std::string& error);
   [[noreturn]] void fail_on_output(const OutputError& e);
   /// fail() unless the step meets the acceptance rule, its balance judged
   /// from the accepted state's residual

@@ -416,3 +416,18 @@ def test_thin_3d_plates_tend_to_plane_stress(tmp_path):
         off.append(max(abs(a[k] / stress[k] - 1) for k in a))
     assert off[1] < off[0] / 2 and off[1] < 1e-3, off
     assert min(abs(strain[k] / stress[k] - 1) for k in strain) > 0.2
+
+
+@pytest.mark.parametrize("engine", ["cpp", "cpp-jit", "reference"])
+def test_an_expression_that_stops_being_finite_stops_the_run(tmp_path, engine):
+    """1/(1 - t) is finite until t = 1: the run stops at that step with
+    exit 2 and one line naming the datum, the point and t; the summary
+    says failed with that line and keeps the three steps before."""
+    s, proc = run_solver(engine, tmp_path / "out",
+                         ['boundaries.top.traction=["1/(1-t)", 0]', "mesh.n=4", "time.steps=4",
+                          "output.xdmf=false", "output.nodal=none"], check=False)
+    errors = [line for line in proc.stderr.splitlines() if line.startswith("error: ")]
+    assert proc.returncode == 2 and len(errors) == 1, proc.stderr
+    assert 'boundaries.top.traction[0]: "1/(1-t)" is inf at' in errors[0]
+    assert "at t = 1.0: a datum must be finite everywhere" in errors[0]
+    assert s["status"] == "failed" and s["error"] in errors[0] and len(s["steps"]) == 3
