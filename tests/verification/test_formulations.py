@@ -194,6 +194,11 @@ def bending_solution(curvature, tau_factor):
     return dict(A0=A0, A1=A1, D0=D0, eyy=eyy, E=E, sxx=sxx)
 
 
+def num(v):
+    """A number as an expression reads it, to the last bit."""
+    return repr(float(v))
+
+
 def test_plane_stress_pure_bending_is_exact_at_degree_2(tmp_path):
     """u_x = (A0 + A1 y) x, u_y = int eps_yy dy - A1 x^2 / 2, phi = -int E dy:
     quadratic, so P2 holds it. Loads given as expressions: sigma_xx(y) on
@@ -201,14 +206,14 @@ def test_plane_stress_pure_bending_is_exact_at_degree_2(tmp_path):
     (u_x = 0, u_y(y) quadratic). Viscosity: one step from rest, B (1 + tau)."""
     sol = bending_solution(1e-5, 1 + TAU)
     eyy, E, sxx = sol["eyy"], sol["E"], sol["sxx"]
-    uy0 = f"{eyy[0] / 2!r}*y*y + {eyy[1]!r}*y"     # int_0^y eps_yy
+    uy0 = f"{num(eyy[0] / 2)}*y*y + {num(eyy[1])}*y"     # int_0^y eps_yy
     cfg = {
         "mesh": {"type": "unit_square", "n": 4, "diagonal": "crossed"},
         "formulation": "plane_stress",
         "elements": {"degree": 2},
         "material": {"preset": "PZT-5H", "poling": [0, 1]},
         "boundaries": {"left": {"displacement": [0.0, uy0]},
-                       "right": {"traction": [f"{sxx[0]!r}*y + {sxx[1]!r}", 0.0]},
+                       "right": {"traction": [f"{num(sxx[0])}*y + {num(sxx[1])}", 0.0]},
                        "bottom": {"potential": 0.0}, "top": {"potential": 0.0}},
         "time": {"T": 1.0, "steps": 1},
         "probes": [[1.0, 1.0], [0.5, 0.25], [0.75, 0.6], [1.0, 0.0]],
