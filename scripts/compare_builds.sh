@@ -27,6 +27,10 @@ PY
 )
 status=0
 while read -r config sets; do
+  if [ ! -f "out/tree-$rev/demos/$config" ]; then # new since REV: nothing to compare
+    printf '%-28s new since %s\n' "$config" "$rev"
+    continue
+  fi
   args=(--config "out/tree-$rev/demos/$config" --quiet --set output.xdmf=false --set output.nodal=none)
   for s in $sets "$@"; do args+=(--set "$s"); done
   for b in old new; do

@@ -154,14 +154,17 @@ std::optional<double> ContactGeometry::max_normal_gap(const Problem& problem,
   if (!_cells.empty())
   {
     const std::size_t m = _cells.size(), d = problem.dim();
-    std::vector<double> u(d * m);
+    std::vector<double> u(d * m), g(m, 0.0);
     problem.u->eval(_points, {m, 3}, _cells, u, {m, d});
+    // a gap given by an expression: its field, the Constant being zero
+    if (auto field = problem.model.data_fields.find("g"); field != problem.model.data_fields.end())
+      field->second->eval(_points, {m, 3}, _cells, g, {m, 1});
     for (std::size_t j = 0; j < m; ++j)
     {
       double un = 0.0;
       for (std::size_t i = 0; i < d; ++i)
         un += u[d * j + i] * _normals[j][i];
-      local = std::max(local, un - gap);
+      local = std::max(local, un - gap - g[j]);
     }
   }
   double largest;

@@ -31,7 +31,9 @@ class ContactGeometry
 {
 public:
   explicit ContactGeometry(const Problem& problem);
-  /// Largest u.nu - g on Gamma_C; empty without a contact boundary
+  /// Largest u.nu - g on Gamma_C (g: the Constant gap plus the model's
+  /// field of it, when the config gives it by an expression); empty
+  /// without a contact boundary
   std::optional<double> max_normal_gap(const Problem& problem, double gap) const;
 
 private:

@@ -325,8 +325,8 @@ MaterialTensors axisymmetric(const MaterialTensors& m)
   if (c > 1e-12)
     throw std::invalid_argument(
         "it couples the axisymmetric strains or fields to torsion (shears yz, xz: relative "
-        "size " + std::to_string(c) + "); axisymmetry needs its poling along x (r), y (the "
-        "axis) or z (hoop)");
+        "size " + std::to_string(c) + "); axisymmetry needs its poling along x (r) or y (the "
+        "axis)");
   return restricted(m, strains, {0, 1});
 }
 

@@ -101,8 +101,9 @@ void Problem::set_time(double t, double k)
     for (std::size_t i = 0; i < d.base.size(); ++i)
       d.values[i] = f * d.base[i];
   }
-  for (const auto& e : _evolving)
-    evaluate(e, t, e.datum.history.factor(t));
+  if (t > 0) // from the first step on: nothing is solved at t = 0 ("1/t" is a datum)
+    for (const auto& e : _evolving)
+      evaluate(e, t, e.datum.history.factor(t));
   if (u_exact)
     u_exact->interpolate(*model.u_exact);
   if (phi_exact)
@@ -201,6 +202,14 @@ double Problem::applied_load() const
   if (_applied_load >= 0.0 or model.L.empty())
     return std::max(_applied_load, 0.0);
   _applied_load = load_sum();
+  // loads that vary in time by expressions (or by a hook of t outside a
+  // manufactured run) have no amplitude to know in advance: the largest
+  // seen so far keeps the scale when they pass through zero
+  if (!_evolving.empty() or (model.constants.count("t") and model.squared_errors.empty()))
+  {
+    _load_peak = std::max(_load_peak, _applied_load);
+    _applied_load = _load_peak;
+  }
   if (!_scaled.empty())
   {
     if (_load_amplitude < 0.0)
@@ -531,7 +540,7 @@ void Problem::place_spatial(const std::shared_ptr<fem::Function<double>>& field,
       // a node on a coordinate plane is there exactly (the push-forward
       // leaves round-off, which 1/x or sqrt(x) on the axis would read)
       const double xc = x[3 * node + c];
-      placed.points.push_back(std::abs(xc) < 1e-14 * _extent ? 0.0 : xc);
+      placed.points.push_back(std::abs(xc) <= 1e-12 * _extent ? 0.0 : xc);
     }
   if (std::any_of(datum.components.begin(), datum.components.end(), [](const Value& v)
                   { return v.varies() and v.expression->uses_time(); }))

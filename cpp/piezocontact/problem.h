@@ -186,6 +186,7 @@ private:
   };
   mutable std::vector<Scaled> _scaled;
   mutable double _load_amplitude = -1.0; ///< applied_load at factor 1; < 0: not yet
+  mutable double _load_peak = 0.0;       ///< the largest load_sum of loads of t so far
   double load_sum() const;
   std::vector<std::shared_ptr<dolfinx::fem::Function<double>>> _scaled_bc_values;
   /// A datum given by expressions, placed on nodes of its field (the

@@ -152,15 +152,18 @@ def history(summary, path):
     """Largest normal displacement on Gamma_C against the gap, and the
     total contact force, over time."""
     g = summary["config"]["contact"]["gap"]
+    varies = isinstance(g, str)  # an expression of x: the penetration against 0
     t = [0.0] + [s["t"] for s in summary["steps"]]  # u_0 = 0
-    un = np.array([0.0] + [s["max_penetration"] + g for s in summary["steps"]])
+    un = np.array([0.0 if not varies else summary["steps"][0]["max_penetration"]]
+                  + [s["max_penetration"] + (0.0 if varies else g) for s in summary["steps"]])
     force = [0.0] + [np.linalg.norm(s["contact_force"]) for s in summary["steps"]]
     fig, (a, b) = plt.subplots(2, 1, figsize=(6.4, 5.6), sharex=True)
-    if g > 100 * un.max() > 0:  # the gap dwarfs the motion: a log axis shows both
+    if not varies and g > 100 * un.max() > 0:  # the gap dwarfs the motion: a log axis
         a.set_yscale("log")
         t, un, force = t[1:], un[1:], force[1:]
-    a.plot(t, un, label="max u.nu on Gamma_C")
-    a.axhline(g, color="tab:red", ls="--", label=f"gap g = {g:g} m")
+    a.plot(t, un, label="max (u.nu - g) on Gamma_C" if varies else "max u.nu on Gamma_C")
+    a.axhline(0.0 if varies else g, color="tab:red", ls="--",
+              label=f"contact, g = {g}" if varies else f"gap g = {g:g} m")
     a.set_ylabel("normal displacement (m)")
     a.legend(fontsize=8)
     b.plot(t, force, color="tab:green")

@@ -150,8 +150,9 @@ class JitModel:
         axisymmetry) and the time t (a Constant the core sets every step),
         evaluated by the forms at their quadrature points; it adds to what
         the config gives for that key. Keys: "loads.body_force",
-        "loads.charge_density", "contact.gap",
-        "boundaries.NAME.traction", "boundaries.NAME.surface_charge"."""
+        "loads.charge_density", "boundaries.NAME.traction",
+        "boundaries.NAME.surface_charge" (a gap that varies: an expression
+        in the config)."""
 
     def __init__(self, named, spec, extra_residual=None, contact_law=None, data=None):
         self.named = named
@@ -218,7 +219,9 @@ class JitModel:
         """{piece ("" shared, or a boundary): {datum name: UFL expression}}
         of the `data` hook; the time Constant "t" joins the shared data."""
         groups = entry_points.data(self.mesh.geometry.dim, False)
-        shared = {d.key: n for n, d in groups["shared"].items() if d.spatial}
+        # the gap stays the config's (an expression there): the core reports
+        # the penetration u.nu - g with the fields it interpolates
+        shared = {d.key: n for n, d in groups["shared"].items() if d.spatial and n != "g"}
         load = {d.key: n for n, d in groups["load"].items() if d.spatial}
         out = {"": {}}
         if data and "t" not in self.data:

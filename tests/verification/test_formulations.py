@@ -393,6 +393,9 @@ def test_engines_agree_in_every_formulation(tmp_path, formulation):
     runs = {e: run(tmp_path, cfg, solver=e, name=e, overrides=["output.nodal=all"])
             for e in ("cpp", "cpp-jit", "reference")}
     assert any(st["contact_length"] > 0 for st in runs["cpp"]["steps"])  # contact happens
+    if formulation != "axisymmetric":  # the corner (0, 1) holds the exact u: u.nu = 1e-9 t
+        for st in runs["cpp"]["steps"]:  # the largest u.nu - g(x) is there: g's field counts
+            assert st["max_penetration"] == pytest.approx(1e-9 * st["t"] - 2e-10, rel=1e-9)
     for other in ("cpp-jit", "reference"):
         for d in compare.probe_differences(runs["cpp"], runs[other]):
             assert d["u"] < 1e-9 and d["phi"] < 1e-9, (other, d)
@@ -436,3 +439,15 @@ def test_an_expression_that_stops_being_finite_stops_the_run(tmp_path, engine):
     assert 'boundaries.top.traction[0]: "1/(1-t)" is inf at' in errors[0]
     assert "at t = 1.0: a datum must be finite everywhere" in errors[0]
     assert s["status"] == "failed" and s["error"] in errors[0] and len(s["steps"]) == 3
+
+
+def test_an_expression_of_t_is_a_datum_from_the_first_step_on(tmp_path):
+    """Nothing is solved at t = 0: 1/t is a datum (a traction decaying from
+    the first step's value on), and the run completes."""
+    s, _ = run_solver("cpp", tmp_path / "out",
+                      ['boundaries.top.traction=[0, "-2.5/t"]', "mesh.n=4", "time.steps=4",
+                       "output.xdmf=false", "output.nodal=none"])
+    assert s["status"] == "completed" and len(s["steps"]) == 4
+    # the load falls as 1/t (the viscosity lags it): the supports carry less
+    first, last = (abs(st["support_force"]) for st in (s["steps"][0], s["steps"][-1]))
+    assert first > 2 * last > 0
