@@ -60,6 +60,24 @@ void check_every_rank_has_cells(const NamedMesh& mesh, MPI_Comm comm, const std:
                         "fewer processes");
 }
 
+/// What the summary's integrated quantities are: per unit thickness in
+/// the plane formulations, per full revolution in axisymmetry
+json units_of(const json& cfg, int d)
+{
+  if (d == 3)
+    return {{"forces", "N"}, {"charges", "C"}, {"currents", "A"}, {"measures", "m^2"}};
+  if (cfg.value("formulation", "") == "axisymmetric")
+    return {{"forces", "N, per full revolution (x: the radial traction integrated over the "
+                       "surface of revolution)"},
+            {"charges", "C, per full revolution"},
+            {"currents", "A, per full revolution"},
+            {"measures", "m^2, the areas of the surfaces of revolution"}};
+  return {{"forces", "N/m, per unit thickness"},
+          {"charges", "C/m, per unit thickness"},
+          {"currents", "A/m, per unit thickness"},
+          {"measures", "m"}};
+}
+
 /// An axisymmetric mesh lies in the half-plane x = r >= 0 (its points on
 /// the axis may be off by round-off)
 void check_half_plane(const json& cfg, const NamedMesh& mesh, MPI_Comm comm,
@@ -236,7 +254,8 @@ json run_config(const RunRequest& request, MPI_Comm comm, const ModelFactory& ma
                {"config", cfg},
                {"config_file", std::filesystem::absolute(request.source).string()},
                {"mesh_file", mesh_file ? json(mesh_file->string()) : json(nullptr)},
-               {"boundary_lengths", boundary_measures(problem)}};
+               {"boundary_lengths", boundary_measures(problem)},
+               {"units", units_of(cfg, d)}};
   }
   if (engine)
     return engine(problem, settings, request.output, summary, request.resume != nullptr,

@@ -100,6 +100,7 @@ def test_axisymmetric_poled_cylinder_is_exact_at_degree_1(tmp_path, circuit):
     charge = step["electrodes"]["top"]["charge"]
     assert charge == pytest.approx(math.pi * D_y, rel=1e-9, abs=1e-12 * math.pi * abs(m["e33"] * b))
     assert abs(step["reactions"]["bottom"][1]) == pytest.approx(math.pi * PRESSURE, rel=1e-10)
+    assert s["units"]["charges"] == "C, per full revolution"  # the summary says so
     if circuit == "open":  # the open circuit stiffens the cylinder (the coupling)
         assert abs(b) < abs(uniform_state(False)[1])
 
@@ -229,6 +230,7 @@ def test_plane_stress_pure_bending_is_exact_at_degree_2(tmp_path):
         assert np.allclose(probe["u"], [ux, uy], rtol=0, atol=1e-9 * scale_u), (probe, ux, uy)
         assert probe["phi"] == pytest.approx(phi, abs=1e-9 * scale_phi)
     # the electrodes carry -+ D0 per unit length and thickness
+    assert s["units"]["charges"] == "C/m, per unit thickness"
     electrodes = s["steps"][-1]["electrodes"]
     assert electrodes["top"]["charge"] == pytest.approx(sol["D0"], rel=1e-8)
     assert electrodes["bottom"]["charge"] == pytest.approx(-sol["D0"], rel=1e-8)
