@@ -128,7 +128,7 @@ def compiled(cell_name, variant=None, degrees=(1, 1), axisymmetric=False, fields
     dx_trial = ufl.TrialFunction(W)
     dx, ds = ufl.Measure("dx", domain=mesh), ufl.Measure("ds", domain=mesh)
     measure = {"region": dx(1), "boundary": ds(1), "contact": ds(1), "electrode": ds(1),
-               "exterior": ds, "mesh": dx}
+               "exterior": ds, "mesh": dx, "obstacle": ds(1)}
     forms, expressions, jacobians = {}, {}, {}
     for t in terms.catalogue(d, variant == "manufactured"):
         if t.variant != variant:

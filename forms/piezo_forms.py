@@ -264,6 +264,156 @@ def contact_force(x, ds, data, i, law=p):
     return -contact_pressure(u, n, data, law) * n[i] * ds(degree=contact_quadrature_degree(x))
 
 
+def _unit(v):
+    """v / |v|, and 0 where v is 0 (a datum the config leaves out)."""
+    length = ufl.sqrt(ufl.dot(v, v))
+    return ufl.conditional(ufl.gt(length, 0), v / length, 0 * v)
+
+
+def obstacle_geometry(domain, ob, nu=None):
+    """(d, n_o): the signed distance of the reference point x to the
+    obstacle's surface (>= 0 outside) and the obstacle's outward normal at
+    its closest point (pointing towards the body). The obstacle has moved by
+    U_o, so it is the distance of X = x - U_o to the obstacle at rest. Its
+    kind is the datum it carries: a plane (point P, normal N), a sphere
+    (centre C, radius R; a circle in 2D) or a cylinder (a point P_a of its
+    axis, direction A, radius R_a); with none of them the paper's foundation,
+    d = g along n_o = -nu (nu the body's outward normal: None where it has
+    none, as in an expression on cells, where that kind is not evaluated)."""
+    X = ufl.SpatialCoordinate(domain) - ob["U_o"]
+    N = _unit(ob["plane_N"])
+    A = _unit(ob["cylinder_A"])
+    radius = ob["sphere_R"] + ob["cylinder_R"]   # one of the two is given
+    q = X - ob["sphere_C"] - ob["cylinder_P"]     # from the centre (a point of the axis)
+    q = q - ufl.dot(q, A) * A                     # ... across the axis (A = 0 for a sphere)
+    plane, round_ = ufl.gt(ufl.dot(N, N), 0.5), ufl.gt(radius, 0)
+    d_round, n_round = ufl.sqrt(ufl.dot(q, q)) - radius, _unit(q)
+    offset_d, offset_n = (ob["g_o"], -nu) if nu is not None else (0 * radius, 0 * N)
+    d = ufl.conditional(plane, ufl.dot(X - ob["plane_P"], N),
+                        ufl.conditional(round_, d_round, offset_d))
+    n = ufl.conditional(plane, N, ufl.conditional(round_, n_round, offset_n))
+    return d, n
+
+
+def obstacle_penetration(u, d, n_o):
+    """r = -(d + u.n_o): how far the displaced point x + u is inside the
+    obstacle, the gap d(x + u) linearised about x (small displacements)."""
+    return -(d + ufl.dot(u, n_o))
+
+
+def normal_stress(s, n, kin=CARTESIAN):
+    """n . sigma n of a Voigt stress s along an in-plane unit vector n."""
+    sigma = kin.in_plane(kin.tensor(s))
+    return ufl.dot(n, ufl.dot(sigma, n))
+
+
+def nitsche_gamma(x, mat, ob):
+    """Nitsche's parameter gamma_0 E / h (Pa/m): the dimensionless gamma_0 of
+    the config, E the largest diagonal modulus of the region's material, h
+    the diameter of the cell of the facet."""
+    Bv = mat["Bv"]
+    E = Bv[0, 0]
+    for i in range(1, Bv.ufl_shape[0]):
+        E = ufl.max_value(E, Bv[i, i])
+    return ob["gamma_N"] * E / ufl.CellDiameter(x.ufl_domain())
+
+
+class Obstacle:
+    """The contact of one boundary with its obstacle, on the facets of that
+    boundary that bound one region (ob: the boundary's contact data, mat: the
+    region's material; Nitsche's terms need the region's stress).
+
+    Normal compliance: the pressure is lambda = law(r, c_p). Nitsche (Chouly &
+    Hild 2013; Chouly, Hild & Renard 2015), with P = sigma_n(u) - gamma r the
+    Signorini condition reads sigma_n = min(P, 0), i.e. lambda = -sigma_n =
+    max(gamma r - sigma_n(u), 0), and the residual gets
+      int lambda (-w.n_o) ds - theta/gamma int (sigma_n(u) + lambda) sigma_n'(w) ds,
+    sigma_n'(w) the derivative of sigma_n along w (elastic and viscous:
+    the electric equation is unchanged); theta = 1 keeps the displacement
+    block of the Jacobian symmetric, the second term vanishes at the exact
+    solution (consistency)."""
+
+    def __init__(self, x, x_prev, ob, mat, data, law=p, kin=CARTESIAN, nu=None):
+        self.u, self.phi = ufl.split(x)
+        u_prev, _ = ufl.split(x_prev)
+        self.ob, self.mat, self.kin, self.data = ob, mat, kin, data
+        self.d, self.n_o = obstacle_geometry(x.ufl_domain(), ob, nu)
+        self.r = obstacle_penetration(self.u, self.d, self.n_o)
+        self.nitsche = ufl.gt(ob["nitsche"], 0.5)
+        if mat is not None:
+            self.gamma = nitsche_gamma(x, mat, ob)
+            s = stress_voigt(self.u, velocity(self.u, u_prev, data), self.phi, mat, kin)
+            self.sigma_n = normal_stress(s, self.n_o, kin)
+        self.law = law
+
+    def pressure(self):
+        """lambda >= 0, the obstacle's pressure on the body."""
+        penalty = self.law(self.r, self.ob["cp_o"])
+        if self.mat is None:
+            return penalty
+        return ufl.conditional(self.nitsche,
+                               ufl.max_value(self.gamma * self.r - self.sigma_n, 0), penalty)
+
+    def test_normal_stress(self, w):
+        """sigma_n'(w): the normal stress of a displacement w at this step
+        (elastic plus viscous, B + A / k)."""
+        s = ufl.dot(self.mat["Bv"], self.kin.strain(w)) \
+            + ufl.dot(self.mat["Av"], self.kin.strain(w)) / self.data["k"]
+        return normal_stress(s, self.n_o, self.kin)
+
+    def residual(self, w, ds):
+        F = -self.pressure() * ufl.dot(w, self.n_o) * ds
+        consistency = -self.ob["theta_N"] / self.gamma * (self.sigma_n + self.pressure()) \
+            * self.test_normal_stress(w)
+        return F + ufl.conditional(self.nitsche, consistency, 0) * ds
+
+
+def obstacle(x, x_prev, ds, ob, mat, data, law=p, kin=CARTESIAN):
+    """The contact with the obstacle of the facets of ds."""
+    return Obstacle(x, x_prev, ob, mat, data, law, kin, ufl.FacetNormal(x.ufl_domain()))
+
+
+def obstacle_residual(x, x_prev, y, ds, ob, mat, data, law=p, kin=CARTESIAN):
+    """The obstacle's term of the residual on the facets of ds."""
+    w, _ = ufl.split(y)
+    return obstacle(x, x_prev, ds, ob, mat, data, law, kin).residual(
+        w, ds(degree=contact_quadrature_degree(x)))
+
+
+def obstacle_force(x, x_prev, ds, ob, mat, data, i, law=p, kin=CARTESIAN):
+    """Component i of the obstacle's resultant force on the body,
+    int lambda n_o ds."""
+    o = obstacle(x, x_prev, ds, ob, mat, data, law, kin)
+    return o.pressure() * o.n_o[i] * ds(degree=contact_quadrature_degree(x))
+
+
+def obstacle_pressure_moments(x, x_prev, q, ds, ob, mat, data, law=p, kin=CARTESIAN):
+    """int lambda q ds and int q ds (see contact_pressure_moments)."""
+    o = obstacle(x, x_prev, ds, ob, mat, data, law, kin)
+    return o.pressure() * q * ds(degree=contact_quadrature_degree(x)), q * ds
+
+
+# Quadrature of the contact measure: the indicator of lambda > 0 jumps
+# inside a facet, and the measure is resolved to about a fifth of the facet
+# (5 Gauss points on an edge at degree 8)
+CONTACT_MEASURE_DEGREE = 8
+
+
+def obstacle_contact_measure(x, x_prev, ds, ob, mat, data, law=p, kin=CARTESIAN):
+    """The measure of the facets of ds where lambda > 0 (the contact
+    length in 2D, area in 3D, per revolution in axisymmetry)."""
+    o = obstacle(x, x_prev, ds, ob, mat, data, law, kin)
+    return ufl.conditional(ufl.gt(o.pressure(), 0), 1, 0) * ds(degree=CONTACT_MEASURE_DEGREE)
+
+
+def obstacle_penetration_at(x, ob):
+    """r at points of cells (an expression: the obstacles with a geometry;
+    the core measures the paper's foundation along the facets' normals)."""
+    u, _ = ufl.split(x)
+    d, n_o = obstacle_geometry(x.ufl_domain(), ob)
+    return obstacle_penetration(u, d, n_o)
+
+
 def electrode_charge(x, ds, mat, kin=CARTESIAN):
     """Charge of an electrode, int D . nu over its facets that bound cells of
     one material (ds: those facets), nu outward: C/m per unit thickness in
@@ -343,6 +493,29 @@ def load_data(d):
         "qF": Datum((), "surface_charge", timed=True, spatial=True),  # surface charge (C/m^2)
         "k_n": Datum((), "spring.normal"),              # bed stiffness along nu (N/m^3)
         "k_t": Datum((), "spring.tangential"),          # bed stiffness across nu (N/m^3)
+        **contact_data(d),
+    }
+
+
+def contact_data(d):
+    """The Constants of one contact boundary with a block of its own or an
+    obstacle (keys within its "contact" block; "contact": true takes the
+    top-level block's): its law, its obstacle and the method."""
+    return {
+        "cp_o": Datum((), "contact.c_p"),                         # penalty stiffness (N/m^3)
+        "g_o": Datum((), "contact.gap", spatial=True),            # the foundation's gap (m)
+        "plane_P": Datum((d,), "contact.obstacle.plane.point"),   # (m)
+        "plane_N": Datum((d,), "contact.obstacle.plane.normal"),  # out of the obstacle
+        "sphere_C": Datum((d,), "contact.obstacle.sphere.center"),
+        "sphere_R": Datum((), "contact.obstacle.sphere.radius"),
+        "cylinder_P": Datum((d,), "contact.obstacle.cylinder.point"),
+        "cylinder_A": Datum((d,), "contact.obstacle.cylinder.axis"),
+        "cylinder_R": Datum((), "contact.obstacle.cylinder.radius"),
+        # the obstacle's rigid displacement (m)
+        "U_o": Datum((d,), "contact.obstacle.displacement", timed=True, spatial=True),
+        "nitsche": Datum((), "contact.method", flag="nitsche"),
+        "gamma_N": Datum((), "contact.gamma"),                    # gamma_0 (1)
+        "theta_N": Datum((), "contact.theta"),                    # 1, 0 or -1
     }
 
 

@@ -17,6 +17,11 @@ Pieces (what one instance of a term is integrated over, and its Constants):
   region     the cells of one region            shared + that region's material
   boundary   the facets of one named boundary   shared + that boundary's data
   contact    the contact facets (all together)  shared
+             (the paper's foundation: "contact": true with the top-level block)
+  obstacle   the facets of one contact boundary with an obstacle or a block
+             of its own, that bound one region
+                                                 shared + that boundary's data
+                                                 + that region's material
   electrode  the facets of one electrode that bound one region
                                                  shared + that region's material
   exterior   every exterior facet                shared (+ the one material)
@@ -37,7 +42,7 @@ import manufactured as mms
 import piezo_forms as pf
 import ufl
 
-PIECES = ("region", "boundary", "contact", "electrode", "exterior", "mesh")
+PIECES = ("region", "boundary", "contact", "electrode", "exterior", "mesh", "obstacle")
 
 
 class Term:
@@ -89,6 +94,16 @@ def _contact_force(i):
     return lambda c: pf.contact_force(c.x, c.m, c.data, i, c.law)
 
 
+def _obstacle_force(i):
+    return lambda c: pf.obstacle_force(c.x, c.x_prev, c.m, c.load, c.mat, c.data, i, c.law,
+                                       c.kin)
+
+
+def _obstacle_moment(k):
+    return lambda c: pf.obstacle_pressure_moments(c.x, c.x_prev, c.q, c.m, c.load, c.mat, c.data,
+                                                  c.law, c.kin)[k]
+
+
 def _spring_force(i):
     return lambda c: pf.spring_force(c.x, c.m, c.load, i)
 
@@ -128,6 +143,22 @@ def model(d):
                slot="contact_force") for i, axis in enumerate("xyz"[:d])],
         *[Term(f"spring_force_{axis}", "boundary", "output", _spring_force(i),
                slot="spring_force", where="spring") for i, axis in enumerate("xyz"[:d])],
+        # contact boundaries with an obstacle or a block of their own
+        Term("F_obstacle", "obstacle", "F",
+             lambda c: pf.obstacle_residual(c.x, c.x_prev, c.y, c.m, c.load, c.mat, c.data,
+                                            c.law, c.kin)),
+        *[Term(f"obstacle_force_{axis}", "obstacle", "output", _obstacle_force(i),
+               slot="obstacle_force") for i, axis in enumerate("xyz"[:d])],
+        Term("obstacle_pressure_load", "obstacle", "output", _obstacle_moment(0),
+             slot="obstacle_pressure_load", space="P"),
+        Term("obstacle_nodal_area", "obstacle", "output", _obstacle_moment(1),
+             slot="obstacle_nodal_area", space="P"),
+        Term("obstacle_contact_measure", "obstacle", "output",
+             lambda c: pf.obstacle_contact_measure(c.x, c.x_prev, c.m, c.load, c.mat, c.data,
+                                                   c.law, c.kin), slot="obstacle_contact_measure"),
+        Term("obstacle_penetration", "obstacle", "output",
+             lambda c: pf.obstacle_penetration_at(c.x, c.load), slot="obstacle_penetration",
+             points="u_nodes"),
         Term("electric_displacement", "region", "output", electric_displacement,
              slot="electric_displacement", points="midpoint"),
         Term("stress", "region", "output", stress, slot="stress", points="midpoint"),

@@ -135,7 +135,7 @@ header = f"""// Generated from forms/terms.py by forms/write_cpp_header.py: do n
 namespace piezocontact::forms
 {{
 /// What one instance of a term is integrated over (forms/terms.py)
-enum class Piece {{ region, boundary, contact, electrode, exterior, mesh }};
+enum class Piece {{ region, boundary, contact, electrode, exterior, mesh, obstacle }};
 /// Residual, applied loads, Jacobian (constant in a run, or not), output
 enum class Role {{ F, L, J, J_state, output }};
 /// The space of a form's arguments: x's, or the contact pressure's (P1)

@@ -100,6 +100,7 @@ void declare_model(py::module_& m)
       .def(py::init<>())
       .def_rw("manufactured", &ModelSpec::manufactured)
       .def_rw("contact", &ModelSpec::contact)
+      .def_rw("obstacles", &ModelSpec::obstacles)
       .def_rw("electrodes", &ModelSpec::electrodes)
       .def_rw("boundary_keys", &ModelSpec::boundary_keys)
       .def_rw("degrees", &ModelSpec::degrees)
@@ -123,6 +124,21 @@ void declare_model(py::module_& m)
       .def_rw("electric_displacement", &RegionFields::electric_displacement)
       .def_rw("stress", &RegionFields::stress);
 
+  class_<ObstacleContact::Penetration>(m, "ObstaclePenetration",
+                                       "The penetration on some facets (model.h)")
+      .def(py::init<>())
+      .def_rw("facets", &ObstacleContact::Penetration::facets)
+      .def_rw("expression", &ObstacleContact::Penetration::expression);
+
+  class_<ObstacleContact>(m, "ObstacleContact",
+                          "The forms of a contact boundary with an obstacle (model.h)")
+      .def(py::init<>())
+      .def_rw("force", &ObstacleContact::force)
+      .def_rw("pressure_load", &ObstacleContact::pressure_load)
+      .def_rw("nodal_area", &ObstacleContact::nodal_area)
+      .def_rw("contact_measure", &ObstacleContact::contact_measure)
+      .def_rw("penetration", &ObstacleContact::penetration);
+
   class_<Model>(m, "Model", "The dolfinx objects of a run (model.h)")
       .def(py::init<>())
       .def_rw("mesh", &Model::mesh)
@@ -143,6 +159,7 @@ void declare_model(py::module_& m)
       .def_rw("J_contact", &Model::J_contact)
       .def_rw("contact_force", &Model::contact_force)
       .def_rw("spring_force", &Model::spring_force)
+      .def_rw("obstacles", &Model::obstacles)
       .def_rw("fields", &Model::fields)
       .def_rw("u_exact", &Model::u_exact)
       .def_rw("phi_exact", &Model::phi_exact)
@@ -227,9 +244,8 @@ void declare_problem(py::module_& m)
   m.def("contact_force", &contact_force, py::arg("problem"),
         "Resultant force of the foundation on the body at the current x");
   m.def("force_imbalance",
-        py::overload_cast<const Problem&, const ForceBalance&, const std::vector<double>&>(
-            &force_imbalance),
-        py::arg("problem"), py::arg("balance"), py::arg("contact_force"),
+        py::overload_cast<const Problem&, const ForceBalance&>(&force_imbalance),
+        py::arg("problem"), py::arg("balance"),
         "What Newton left on the free u dofs relative to the forces in play");
   m.attr("balance_tolerance") = balance_tolerance;
   class_<Acceptance>(m, "Acceptance", "The rule that accepts a step (acceptance.h)")

@@ -19,6 +19,8 @@ CONTACTOR = ROOT / "demos" / "contactor.json"
 MMS = ROOT / "demos" / "manufactured.json"
 SLAB = ROOT / "demos" / "slab.json"
 BILAYER = ROOT / "demos" / "bilayer.json"
+DISC = ROOT / "demos" / "disc.json"
+PLANE = '"plane":{"point":[0,0],"normal":[0,1]}'
 UNUSED = "not used with a manufactured solution (its loads come from the exact solution)"
 
 # name: (config, --set overrides, expected part of the message)
@@ -67,7 +69,7 @@ CASES = {
                                 "is one JSON object"),
     "contact boundary without the contact block": (
         "NO_CONTACT", [], "contact: missing: boundaries.bottom has \"contact\": true, which "
-        "needs the foundation's contact.c_p and contact.gap"),
+        "needs the top-level contact block (c_p and gap, or an obstacle)"),
     "invalid UTF-8": ("BAD_UTF8", [], "invalid JSON at line 1 column 11: syntax error while "
                       "parsing value - invalid string: ill-formed UTF-8 byte; last read: "
                       "'\"\\xff'"),
@@ -208,6 +210,49 @@ CASES = {
         "ACROSS_AXIS", ["formulation=axisymmetric"],
         "formulation: axisymmetric: the mesh has points at x = r < 0 (down to -1.0 m): an "
         "axisymmetric mesh lies in the half-plane x >= 0, y the axis"),
+    # obstacles and Nitsche's method
+    "an obstacle of two kinds": (
+        SQUARE, ['contact={"c_p":1e12,"obstacle":{' + PLANE
+                 + ',"sphere":{"center":[0,-1],"radius":1}}}'],
+        ": give exactly one of plane, sphere, cylinder"),
+    "an obstacle and a gap": (
+        SQUARE, ['contact.obstacle={' + PLANE + '}'],
+        "contact.gap: the obstacle's geometry gives the gap (gap is the paper's "
+        "foundation's, without an obstacle)"),
+    "an obstacle's direction zero": (
+        SQUARE, ['contact={"c_p":1e12,"obstacle":{"plane":{"point":[0,0],"normal":[0,0]}}}'],
+        "contact.obstacle.plane.normal = [0.0,0.0]: a direction cannot be zero"),
+    "a cylinder in 2D": (
+        SQUARE, ['contact={"c_p":1e12,"obstacle":{"cylinder":{"point":[0,0],"axis":[0,1],'
+                 '"radius":1}}}'],
+        "contact.obstacle.cylinder: a 3D obstacle (in 2D, a sphere is a circle: a cylinder "
+        "across the plane)"),
+    "the penalty without c_p": (
+        SQUARE, ['contact={"gap":0}'],
+        "contact.c_p: missing required key (the penalty method's stiffness; or \"method\": "
+        "\"nitsche\")"),
+    "nitsche with a penalty": (
+        SQUARE, ["contact.method=nitsche"],
+        "contact.c_p: the penalty method's (the method is nitsche: its parameter is gamma)"),
+    "nitsche's theta out of range": (
+        SQUARE, ['contact={"gap":0,"method":"nitsche","theta":2}'],
+        "contact.theta = 2: must be <= 1"),
+    "nitsche's gamma with the penalty": (
+        SQUARE, ["contact.gamma=10"],
+        "contact.gamma: Nitsche's method's (give \"method\": \"nitsche\")"),
+    "a boundary's contact neither true nor a block": (
+        SQUARE, ["boundaries.bottom.contact=5"],
+        "boundaries.bottom.contact = 5: expected true or false, or a contact block (the keys "
+        "of the top-level contact)"),
+    "a sphere off the axis in axisymmetry": (
+        DISC, ['boundaries.side={"contact":{"c_p":1e12,"obstacle":{"sphere":{"center":[0.02,0],'
+               '"radius":0.01}}}}'],
+        "boundaries.side.contact.obstacle.sphere.center = [0.02,0.0]: in axisymmetry a sphere "
+        "is centred on the axis (r = 0)"),
+    "an obstacle in a manufactured run": (
+        MMS, ['contact={"c_p":1e12,"obstacle":{' + PLANE + '}}'],
+        "contact: a manufactured solution's contact is the paper's foundation (\"contact\": "
+        "true, the top-level block with c_p and gap, penalty)"),
 }
 
 

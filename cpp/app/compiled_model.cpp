@@ -198,6 +198,13 @@ private:
     case Piece::mesh:
       out.push_back({"", {}, false, shared});
       break;
+    case Piece::obstacle: // one term per region its facets bound, on every rank
+      for (const auto& name : _spec.obstacles)
+        for (const auto& [region, material] : _m.materials)
+          out.push_back({name, _named.boundary_facets_of(name, region), true,
+                         merged({&_m.constants, &_m.loads.at(name), &material}),
+                         &_m.load_data_fields.at(name)});
+      break;
     }
     return out;
   }
@@ -248,6 +255,19 @@ private:
       _m.contact_pressure_load = form;
     else if (term.slot == "contact_nodal_area")
       _m.contact_nodal_area = form;
+    else if (term.slot == "obstacle_force")
+    {
+      auto& force = _m.obstacles[piece.name].force;
+      const std::size_t i = term.name.back() - 'x'; // obstacle_force_x, _y, _z
+      force.resize(std::max(force.size(), i + 1));
+      force[i].push_back(form);
+    }
+    else if (term.slot == "obstacle_pressure_load")
+      _m.obstacles[piece.name].pressure_load.push_back(form);
+    else if (term.slot == "obstacle_nodal_area")
+      _m.obstacles[piece.name].nodal_area.push_back(form);
+    else if (term.slot == "obstacle_contact_measure")
+      _m.obstacles[piece.name].contact_measure.push_back(form);
     else if (term.slot == "squared_errors")
       _m.squared_errors[term.name] = form;
     else
@@ -256,9 +276,14 @@ private:
 
   void place_expression(const forms::Term& term, const Instance& piece)
   {
-    auto e = compat::create_expression(*term.expression, _coefficients, piece.constants,
+    Coefficients coefficients = _coefficients;
+    if (piece.fields)
+      add_fields(coefficients, *piece.fields, _data);
+    auto e = compat::create_expression(*term.expression, coefficients, piece.constants,
                                        _named.mesh);
-    if (term.slot == "u_exact")
+    if (term.slot == "obstacle_penetration")
+      _m.obstacles[piece.name].penetration.push_back({piece.entities, e});
+    else if (term.slot == "u_exact")
       _m.u_exact = e;
     else if (term.slot == "phi_exact")
       _m.phi_exact = e;

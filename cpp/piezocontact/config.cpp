@@ -13,6 +13,23 @@
 namespace piezocontact
 {
 using namespace dolfinx;
+
+const json* contact_block(const json& cfg, const json& boundary)
+{
+  const json contact = boundary.value("contact", json());
+  if (contact.is_object())
+    return &boundary["contact"];
+  return contact == true and cfg.contains("contact") ? &cfg["contact"] : nullptr;
+}
+
+bool paper_foundation(const json& cfg, const json& boundary)
+{
+  if (boundary.value("contact", json()) != true or !cfg.contains("contact"))
+    return false;
+  const json& block = cfg["contact"];
+  return !block.contains("obstacle") and block.value("method", "penalty") == "penalty";
+}
+
 namespace
 {
 std::string fmt(const json& v) { return printable(v); }
@@ -238,16 +255,33 @@ struct Check
     return (this->*(method->second))();
   }
 
-  /// The option of the value's kind (a list or not) judges it
+  /// The option of the value's kind (a list, an object, a boolean or a
+  /// number) judges it
   json one_of() const
   {
+    const auto kind = [](const std::string& type)
+    {
+      return type == "vector" or type == "integers" ? json::value_t::array
+             : type == "object" or type == "map"    ? json::value_t::object
+             : type == "boolean"                    ? json::value_t::boolean
+                                                    : json::value_t::number_float;
+    };
+    const auto kind_of = [](const json& v)
+    { return v.is_number() ? json::value_t::number_float : v.type(); };
     for (const auto& option : rule["options"])
     {
-      const std::string ot = option["type"];
-      const bool list = ot == "vector" or ot == "integers";
-      if (list == value.is_array())
+      const json& resolved = option.contains("ref")
+                                 ? schema()["keys"][option["ref"].get<std::string>()]
+                                 : option;
+      if (kind(resolved["type"]) == kind_of(value))
         return check(value, option, path, source, d);
     }
+    // else the option of the value's list-ness says what it expected
+    for (const auto& option : rule["options"])
+      if (option.contains("type") and kind(option["type"]) != json::value_t::object
+          and kind(option["type"]) != json::value_t::boolean
+          and (kind(option["type"]) == json::value_t::array) == value.is_array())
+        return check(value, option, path, source, d);
     wrong(rule["expected"].get<std::string>());
   }
 
@@ -589,6 +623,12 @@ void check_manufactured(const json& cfg, const std::string& source)
       if (mms and bc.contains(key))
         fail(source, "boundaries." + name + "." + key + ": " + unused);
   }
+  if (mms)
+    for (const auto& [name, bc] : cfg["boundaries"].items())
+      if (const json* block = contact_block(cfg, bc); block and !paper_foundation(cfg, bc))
+        fail(source, (bc["contact"].is_object() ? "boundaries." + name + ".contact" : "contact")
+                         + ": a manufactured solution's contact is the paper's foundation "
+                           "(\"contact\": true, the top-level block with c_p and gap, penalty)");
   if (mms and cfg.contains("contact") and cfg["contact"].value("gap", json()).is_string())
     fail(source, "contact.gap = " + fmt(cfg["contact"]["gap"])
                      + ": a manufactured solution's gap is a number (its forms have no "
@@ -725,14 +765,54 @@ void check_materials(const json& cfg, const std::string& source)
 }
 
 /// The conditions one boundary combines
+/// A contact block's own rules (path: where it is), the dimension aside
+void check_contact_block(const json& block, const std::string& path, const std::string& source)
+{
+  const bool obstacle = block.contains("obstacle");
+  const bool nitsche = block.value("method", "penalty") == "nitsche";
+  if (obstacle)
+  {
+    const json& o = block["obstacle"];
+    const int kinds = o.contains("plane") + o.contains("sphere") + o.contains("cylinder");
+    if (kinds != 1)
+      fail(source, join(path, "obstacle") + " = " + fmt(o)
+                       + ": give exactly one of plane, sphere, cylinder");
+    for (const auto& [kind, key] : {std::pair{"plane", "normal"}, {"cylinder", "axis"}})
+      if (o.contains(kind))
+      {
+        const json& v = o[kind][key];
+        if (std::all_of(v.begin(), v.end(), [](const json& c) { return c == 0.0; }))
+          fail(source, join(path, std::string("obstacle.") + kind + "." + key) + " = " + fmt(v)
+                           + ": a direction cannot be zero");
+      }
+    if (block.contains("gap"))
+      fail(source, join(path, "gap") + ": the obstacle's geometry gives the gap (gap is the "
+                                       "paper's foundation's, without an obstacle)");
+  }
+  else if (!block.contains("gap"))
+    fail(source, join(path, "gap") + ": missing required key (without an obstacle the "
+                                     "foundation is the paper's: the boundary offset by gap)");
+  if (!nitsche and !block.contains("c_p"))
+    fail(source, join(path, "c_p") + ": missing required key (the penalty method's stiffness; "
+                                     "or \"method\": \"nitsche\")");
+  if (nitsche and block.contains("c_p"))
+    fail(source, join(path, "c_p") + ": the penalty method's (the method is nitsche: its "
+                                     "parameter is gamma)");
+  for (const char* key : {"gamma", "theta"})
+    if (!nitsche and block.contains(key))
+      fail(source, join(path, key) + ": Nitsche's method's (give \"method\": \"nitsche\")");
+}
+
 void check_boundary(const json& cfg, const std::string& name, const json& bc,
                     const std::string& source)
 {
   const std::string where = join("boundaries", name);
-  const bool contact = bc.value("contact", false);
-  if (contact and !cfg.contains("contact"))
+  const bool contact = contact_block(cfg, bc) != nullptr;
+  if (bc.value("contact", json()) == true and !cfg.contains("contact"))
     fail(source, "contact: missing: " + where + " has \"contact\": true, which needs the "
-                 "foundation's contact.c_p and contact.gap");
+                 "top-level contact block (c_p and gap, or an obstacle)");
+  if (bc.contains("contact") and bc["contact"].is_object())
+    check_contact_block(bc["contact"], join(where, "contact"), source);
   if (bc.contains("displacement") and (bc.contains("traction") or contact))
     fail(source, where + ": a clamped boundary (displacement) cannot also "
                          "carry traction or contact");
@@ -768,6 +848,8 @@ void check_semantics(const json& cfg, const std::string& source)
 {
   check_mesh_keys(cfg["mesh"], source);
   check_materials(cfg, source);
+  if (cfg.contains("contact"))
+    check_contact_block(cfg["contact"], "contact", source);
   for (const auto& [name, bc] : cfg["boundaries"].items())
     check_boundary(cfg, name, bc, source);
   check_held(cfg["boundaries"], source);
@@ -983,9 +1065,61 @@ void check_formulation_of_materials(const json& cfg, const std::string& source)
 }
 } // namespace
 
+namespace
+{
+/// Every contact block of a config with its path: the top-level one and
+/// the boundaries' own
+std::vector<std::pair<std::string, json*>> contact_blocks(json& cfg)
+{
+  std::vector<std::pair<std::string, json*>> out;
+  if (cfg.contains("contact"))
+    out.emplace_back("contact", &cfg["contact"]);
+  for (auto& [name, bc] : cfg["boundaries"].items())
+    if (bc.contains("contact") and bc["contact"].is_object())
+      out.emplace_back("boundaries." + name + ".contact", &bc["contact"]);
+  return out;
+}
+
+/// The rules of obstacles that need the dimension and the formulation, and
+/// Nitsche's defaults
+void check_obstacles(json& cfg, int d, const std::string& source)
+{
+  const bool axisymmetric = cfg.value("formulation", "") == "axisymmetric";
+  for (auto& [path, block] : contact_blocks(cfg))
+  {
+    if (block->value("method", "penalty") == "nitsche")
+    {
+      if (!block->contains("gamma"))
+        (*block)["gamma"] = 10.0;
+      if (!block->contains("theta"))
+        (*block)["theta"] = 1;
+    }
+    if (!block->contains("obstacle"))
+      continue;
+    const json& o = (*block)["obstacle"];
+    const std::string at = path + ".obstacle";
+    if (o.contains("cylinder") and d != 3)
+      fail(source, at + ".cylinder: a 3D obstacle (in 2D, a sphere is a circle: a cylinder "
+                        "across the plane)");
+    if (!axisymmetric)
+      continue;
+    if (o.contains("sphere") and o["sphere"]["center"][0] != 0.0)
+      fail(source, at + ".sphere.center = " + fmt(o["sphere"]["center"])
+                       + ": in axisymmetry a sphere is centred on the axis (r = 0)");
+    if (o.contains("plane") and o["plane"]["normal"][0] != 0.0)
+      fail(source, at + ".plane.normal = " + fmt(o["plane"]["normal"])
+                       + ": in axisymmetry a plane is normal to the axis (other planes are cones)");
+    if (o.contains("displacement") and value_of(o["displacement"])[0] != 0.0)
+      fail(source, at + ".displacement = " + fmt(o["displacement"])
+                       + ": in axisymmetry an obstacle moves along the axis (its r component is 0)");
+  }
+}
+} // namespace
+
 json check_dimension(const json& cfg_, int d, const std::string& source)
 {
   json cfg = check(cfg_, schema(), "", source, d);
+  check_obstacles(cfg, d, source);
   if (d == 3)
   {
     if (cfg.contains("formulation"))
@@ -1090,14 +1224,24 @@ ModelSpec model_spec(const json& cfg)
       note_expressions(cfg[group], std::string(group) + ".");
   for (const auto& [_, bc] : cfg["boundaries"].items())
     note_expressions(bc, "");
+  // (nested: an obstacle's displacement, a boundary's own block)
+  for (const auto& [_, bc] : cfg["boundaries"].items())
+    if (const json* block = contact_block(cfg, bc))
+    {
+      note_expressions(*block, "contact.");
+      if (block->contains("obstacle"))
+        note_expressions((*block)["obstacle"], "contact.obstacle.");
+    }
   // (a summary written before "elements" existed has none: degree 1)
   const json elements = cfg.contains("elements") ? cfg["elements"] : json::object();
   const int degree = elements.value("degree", 1);
   spec.degrees = {elements.value("u", degree), elements.value("phi", degree)};
   for (const auto& [name, bc] : cfg["boundaries"].items())
   {
-    if (bc.value("contact", false))
+    if (paper_foundation(cfg, bc))
       spec.contact.push_back(name);
+    else if (contact_block(cfg, bc))
+      spec.obstacles.push_back(name);
     if (bc.contains("potential") or bc.contains("floating"))
       spec.electrodes.push_back(name);
     auto& keys = spec.boundary_keys[name];
@@ -1139,6 +1283,26 @@ const json* entry_of(const json& cfg, const std::string& group, const std::strin
     return cfg["regions"].contains(piece) ? &cfg["regions"][piece] : nullptr;
   }
   return cfg["boundaries"].contains(piece) ? &cfg["boundaries"][piece] : nullptr;
+}
+
+/// The value of a datum's key for one piece (null: the config gives none).
+/// A contact boundary's contact data ("contact." keys of the load group)
+/// are in its own block or in the top-level one; the paper's foundation
+/// has them in the shared data instead.
+const json* datum_at(const json& cfg, const std::string& group, const std::string& piece,
+                     const std::string& key)
+{
+  const json* entry = entry_of(cfg, group, piece);
+  if (!entry or key.empty())
+    return nullptr;
+  const std::string prefix = "contact.";
+  if (group == "load" and key.compare(0, prefix.size(), prefix) == 0)
+  {
+    const json* block = contact_block(cfg, *entry);
+    return block and !paper_foundation(cfg, *entry) ? at_path(*block, key.substr(prefix.size()))
+                                                     : nullptr;
+  }
+  return at_path(*entry, key);
 }
 
 /// Every (piece, Constants) of a group: "" for the shared ones
@@ -1200,10 +1364,9 @@ void set_constants(const json& cfg, const Model& model)
   for (const auto& datum : model.sources)
     for (const auto& [piece, constants] : pieces(model, datum.group))
     {
-      const json* entry = entry_of(cfg, datum.group, piece);
-      if (datum.group == "material" and !entry)
+      if (datum.group == "material" and !entry_of(cfg, datum.group, piece))
         throw std::logic_error("no material for region " + piece + " (check_names)");
-      const json* value = entry && !datum.key.empty() ? at_path(*entry, datum.key) : nullptr;
+      const json* value = datum_at(cfg, datum.group, piece, datum.key);
       if (value and !datum.flag.empty())
         set_value(*constants, datum.name, *value == datum.flag ? 1.0 : 0.0);
       else if (value and !varies(value_of(*value))) // else its field carries it (spatial_loads)
@@ -1218,8 +1381,8 @@ std::vector<SpatialLoad> spatial_loads(const json& cfg, const Model& model)
   for (const auto& datum : model.sources)
     if (!datum.field.empty())
       for (const auto& [piece, _] : pieces(model, datum.group))
-        if (const json* entry = entry_of(cfg, datum.group, piece))
-          if (const json* value = at_path(*entry, datum.key); value and varies(value_of(*value)))
+        if (const json* value = datum_at(cfg, datum.group, piece, datum.key);
+            value and varies(value_of(*value)))
           {
             SpatialDatum s;
             s.key = (datum.group == "load" ? "boundaries." + piece + "." : "") + datum.key;
@@ -1238,9 +1401,8 @@ std::vector<TimedConstant> timed_constants(const json& cfg, const Model& model)
   for (const auto& datum : model.sources)
     if (datum.timed and datum.group != "material")
       for (const auto& [piece, _] : pieces(model, datum.group))
-        if (const json* entry = entry_of(cfg, datum.group, piece))
-          if (const json* value = at_path(*entry, datum.key))
-            out.push_back({piece, datum.name, history_of(*value)});
+        if (const json* value = datum_at(cfg, datum.group, piece, datum.key))
+          out.push_back({piece, datum.name, history_of(*value)});
   return out;
 }
 } // namespace piezocontact

@@ -50,6 +50,16 @@ RunSettings run_settings(const json& cfg);
 /// Which pieces of the mesh carry which terms, from a validated config
 ModelSpec model_spec(const json& cfg);
 
+/// The contact block of a boundary's entry: its own ("contact": {...}),
+/// the top-level one ("contact": true), or null (no contact)
+const json* contact_block(const json& cfg, const json& boundary);
+
+/// Whether a boundary's contact is the paper's foundation as the first
+/// releases ran it: "contact": true with a top-level block that has no
+/// obstacle and the penalty method (the shared "contact" piece of the
+/// forms; every other contact boundary is an "obstacle" piece of its own)
+bool paper_foundation(const json& cfg, const json& boundary);
+
 /// Fill the Constants of a model from a validated config, each from the
 /// key its source names (Model::sources; zero where the config gives
 /// none), and the time step k = T/steps and the switches of a manufactured

@@ -189,9 +189,82 @@ std::vector<double> assemble_each(const FormList& forms, MPI_Comm comm)
 }
 } // namespace
 
+std::vector<double> obstacle_force(const Problem& problem, const std::string& boundary)
+{
+  std::vector<double> f;
+  for (const auto& terms : problem.model.obstacles.at(boundary).force)
+  {
+    const auto each = assemble_each(terms, problem.comm);
+    f.push_back(std::accumulate(each.begin(), each.end(), 0.0));
+  }
+  return f;
+}
+
+double obstacle_contact_measure(const Problem& problem, const std::string& boundary)
+{
+  const auto each = assemble_each(problem.model.obstacles.at(boundary).contact_measure,
+                                  problem.comm);
+  return std::accumulate(each.begin(), each.end(), 0.0);
+}
+
 std::vector<double> contact_force(const Problem& problem)
 {
-  return assemble_each(problem.model.contact_force, problem.comm);
+  auto f = assemble_each(problem.model.contact_force, problem.comm);
+  for (const auto& [name, _] : problem.model.obstacles)
+  {
+    const auto g = obstacle_force(problem, name);
+    f.resize(std::max(f.size(), g.size()), 0.0);
+    for (std::size_t i = 0; i < g.size(); ++i)
+      f[i] += g[i];
+  }
+  return f;
+}
+
+ObstaclePenetration::ObstaclePenetration(const Problem& problem)
+{
+  if (problem.model.obstacles.empty())
+    return;
+  const auto& mesh = *problem.mesh;
+  const int tdim = compat::topology(mesh).dim();
+  compat::topology_mutable(mesh).create_connectivity(tdim - 1, tdim);
+  const auto f_to_c = compat::topology(mesh).connectivity(tdim - 1, tdim);
+  // a component of u's space: the scalar space of its nodes
+  auto [V, _] = compat::sub(*problem.V_u, 0)->collapse();
+  _r = std::make_shared<fem::Function<double>>(
+      std::make_shared<compat::FunctionSpace>(std::move(V)));
+  for (const auto& [name, contact] : problem.model.obstacles)
+    for (const auto& p : contact.penetration)
+    {
+      Part part{{}, {}, p.expression};
+      for (auto f : p.facets)
+        part.cells.push_back(f_to_c->links(f)[0]);
+      std::sort(part.cells.begin(), part.cells.end());
+      part.cells.erase(std::unique(part.cells.begin(), part.cells.end()), part.cells.end());
+      const std::int32_t owned = _r->function_space()->dofmap()->index_map->size_local();
+      for (auto dof : compat::locate_nodes(*_r->function_space(), tdim - 1, p.facets))
+        if (dof < owned) // each node once over the ranks
+          part.dofs.push_back(dof);
+      _parts[name].push_back(std::move(part));
+    }
+}
+
+std::optional<double> ObstaclePenetration::largest(const Problem& problem,
+                                                   const std::string& boundary) const
+{
+  double local = -std::numeric_limits<double>::infinity();
+  if (auto parts = _parts.find(boundary); parts != _parts.end())
+    for (const auto& part : parts->second)
+    {
+      _r->interpolate(*part.expression, part.cells);
+      const auto r = _r->x()->array();
+      for (auto dof : part.dofs)
+        local = std::max(local, r[dof]);
+    }
+  double largest;
+  MPI_Allreduce(&local, &largest, 1, MPI_DOUBLE, MPI_MAX, problem.comm);
+  if (largest == -std::numeric_limits<double>::infinity())
+    return std::nullopt;
+  return largest;
 }
 
 std::map<std::string, std::vector<double>> spring_forces(const Problem& problem)
@@ -202,25 +275,37 @@ std::map<std::string, std::vector<double>> spring_forces(const Problem& problem)
   return out;
 }
 
-double force_imbalance(const ForceBalance& balance, const std::vector<double>& contact_force,
-                       double applied_load)
+namespace
 {
-  const auto norm = [](const std::vector<double>& v)
-  { return std::sqrt(std::inner_product(v.begin(), v.end(), v.begin(), 0.0)); };
-  const double forces = balance.supported + norm(contact_force) + applied_load;
+double norm(const std::vector<double>& v)
+{
+  return std::sqrt(std::inner_product(v.begin(), v.end(), v.begin(), 0.0));
+}
+} // namespace
+
+double contact_forces_in_play(const Problem& problem)
+{
+  double sum = norm(assemble_each(problem.model.contact_force, problem.comm));
+  for (const auto& [name, _] : problem.model.obstacles)
+    sum += norm(obstacle_force(problem, name));
+  return sum;
+}
+
+double force_imbalance(const ForceBalance& balance, double contact_forces, double applied_load)
+{
+  const double forces = balance.supported + contact_forces + applied_load;
   const double left = norm(balance.unbalanced);
   if (forces == 0.0)
     return std::isfinite(left) ? 0.0 : left;
   return left / forces; // NaN or inf stay so
 }
 
-double force_imbalance(const Problem& problem, const ForceBalance& balance,
-                       const std::vector<double>& contact_force)
+double force_imbalance(const Problem& problem, const ForceBalance& balance)
 {
-  const double quick = force_imbalance(balance, contact_force, 0.0);
-  return quick <= balance_tolerance
-             ? quick
-             : force_imbalance(balance, contact_force, problem.applied_load());
+  const double contact = contact_forces_in_play(problem);
+  const double quick = force_imbalance(balance, contact, 0.0);
+  return quick <= balance_tolerance ? quick
+                                    : force_imbalance(balance, contact, problem.applied_load());
 }
 
 std::map<std::string, double> boundary_measures(const Problem& problem)

@@ -42,24 +42,57 @@ private:
   std::vector<std::array<double, 3>> _normals;
 };
 
-/// Resultant force of the foundation on the body (N/m in 2D, N in 3D)
+/// The penetration r of each contact boundary with an obstacle, at the
+/// nodes of u's space on its facets (Model::obstacles: the forms' r,
+/// interpolated into a scalar field of u's degree on the facets' cells)
+class ObstaclePenetration
+{
+public:
+  explicit ObstaclePenetration(const Problem& problem);
+  /// Largest r on the boundary's facets (> 0: inside the obstacle); empty
+  /// if the boundary has no facets. Collective.
+  std::optional<double> largest(const Problem& problem, const std::string& boundary) const;
+
+private:
+  struct Part
+  {
+    std::vector<std::int32_t> cells, dofs;
+    std::shared_ptr<const dolfinx::fem::Expression<double>> expression;
+  };
+  std::map<std::string, std::vector<Part>> _parts;
+  std::shared_ptr<dolfinx::fem::Function<double>> _r;
+};
+
+/// Resultant force of the foundation and of every obstacle on the body (N/m
+/// in 2D, N in 3D)
 std::vector<double> contact_force(const Problem& problem);
+
+/// The measure (length in 2D, area in 3D) of one obstacle's boundary where
+/// its pressure is positive. Collective.
+double obstacle_contact_measure(const Problem& problem, const std::string& boundary);
+
+/// Resultant force of one obstacle on the body. Collective.
+std::vector<double> obstacle_force(const Problem& problem, const std::string& boundary);
 
 /// Resultant force of each spring bed on the body, per boundary (N/m in 2D,
 /// N in 3D). Collective.
 std::map<std::string, std::vector<double>> spring_forces(const Problem& problem);
 
-/// Newton's leftover on the free u dofs relative to the forces in play:
-/// |unbalanced| / (supported + |contact force| + applied_load)
-/// (ForceBalance, Problem::applied_load); 0 if no force is in play. A step
-/// whose forces balance has it at round-off.
-double force_imbalance(const ForceBalance& balance, const std::vector<double>& contact_force,
-                       double applied_load);
+/// The contact forces in play: the sum of the sizes of the foundation's
+/// and of each obstacle's resultant force (obstacles that push from two
+/// sides have a resultant near 0 but forces that count). Collective.
+double contact_forces_in_play(const Problem& problem);
 
-/// force_imbalance at the current time, assembling the applied loads only
-/// if the other forces do not already show the balance. Collective.
-double force_imbalance(const Problem& problem, const ForceBalance& balance,
-                       const std::vector<double>& contact_force);
+/// Newton's leftover on the free u dofs relative to the forces in play:
+/// |unbalanced| / (supported + contact_forces + applied_load)
+/// (ForceBalance, contact_forces_in_play, Problem::applied_load); 0 if no
+/// force is in play. A step whose forces balance has it at round-off.
+double force_imbalance(const ForceBalance& balance, double contact_forces, double applied_load);
+
+/// force_imbalance at the current state and time, assembling the applied
+/// loads only if the other forces do not already show the balance.
+/// Collective.
+double force_imbalance(const Problem& problem, const ForceBalance& balance);
 
 /// Length (area in 3D) of each named boundary, from Model::boundary_measures.
 /// Collective.

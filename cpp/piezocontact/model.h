@@ -55,6 +55,28 @@ struct RegionFields
   std::shared_ptr<const dolfinx::fem::Expression<double>> electric_displacement, stress;
 };
 
+/// A contact boundary with an obstacle or a contact block of its own
+/// (ModelSpec::obstacles): its forms, each with one term per region that
+/// its facets bound (summed)
+struct ObstacleContact
+{
+  /// force[i]: the terms of component i of the obstacle's resultant force
+  /// on the body (N/m in 2D, N in 3D)
+  std::vector<FormList> force;
+  /// Linear forms on P: int lambda q ds and int q ds (the lumped pressure)
+  FormList pressure_load, nodal_area;
+  /// The measure of the facets where lambda > 0 (at quadrature points)
+  FormList contact_measure;
+  /// The penetration r at the nodes of u's space, on the cells of some of
+  /// the boundary's facets (one per region)
+  struct Penetration
+  {
+    std::vector<std::int32_t> facets;
+    std::shared_ptr<const dolfinx::fem::Expression<double>> expression;
+  };
+  std::vector<Penetration> penetration;
+};
+
 /// Where the value of a Constant of the forms comes from (forms/piezo_forms.py
 /// Datum): its group ("shared", "material" or "load"), its name, the config
 /// key that sets it (from the top for shared data, within a region's
@@ -83,6 +105,9 @@ struct ModelSpec
   /// The contact boundaries; the electrodes (a prescribed or floating
   /// potential), both among the mesh's named boundaries
   std::vector<std::string> contact, electrodes;
+  /// The contact boundaries with an obstacle or a contact block of their
+  /// own (config.h paper_foundation: the others are `contact`)
+  std::vector<std::string> obstacles;
   /// Each named boundary of the config -> the keys its entry sets (a term
   /// with a `where` key is instantiated on the boundaries that set it)
   std::map<std::string, std::vector<std::string>> boundary_keys;
@@ -146,6 +171,8 @@ struct Model
   /// Per boundary with a spring bed: the components of the bed's resultant
   /// force on the body
   std::map<std::string, FormList> spring_force;
+  /// Per contact boundary with an obstacle or a block of its own
+  std::map<std::string, ObstacleContact> obstacles;
   /// Cell-wise electric displacement and stress, per region
   std::vector<RegionFields> fields;
 

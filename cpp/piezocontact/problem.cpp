@@ -26,12 +26,14 @@ std::shared_ptr<fem::Function<double>> named_function(std::shared_ptr<compat::Fu
   return f;
 }
 
-/// The contact boundary's forms on some rank: a pressure field to fill
+/// The contact boundary's forms on some rank, or an obstacle's: a pressure
+/// field to fill
 bool has_contact(const Model& model)
 {
   std::int64_t facets = model.contact_facets.size();
   MPI_Allreduce(MPI_IN_PLACE, &facets, 1, MPI_INT64_T, MPI_SUM, model.mesh.mesh->comm());
-  return model.contact_pressure_load and model.contact_nodal_area and facets > 0;
+  return (model.contact_pressure_load and model.contact_nodal_area and facets > 0)
+         or !model.obstacles.empty();
 }
 } // namespace
 
@@ -475,10 +477,39 @@ double Problem::update_contact_pressure()
 {
   if (!contact_pressure)
     return 0.0;
-  const auto load = assemble({model.contact_pressure_load});
-  const auto area = assemble({model.contact_nodal_area});
+  FormList load, area;
+  if (model.contact_pressure_load and model.contact_nodal_area)
+  {
+    load.push_back(model.contact_pressure_load);
+    area.push_back(model.contact_nodal_area);
+  }
+  for (const auto& [_, o] : model.obstacles)
+  {
+    load.insert(load.end(), o.pressure_load.begin(), o.pressure_load.end());
+    area.insert(area.end(), o.nodal_area.begin(), o.nodal_area.end());
+  }
+  return lumped_pressure(load, area, contact_pressure->x()->mutable_array());
+}
+
+double Problem::obstacle_max_pressure(const std::string& boundary) const
+{
+  const auto& o = model.obstacles.at(boundary);
+  std::vector<double> p(model.P->dofmap()->index_map->size_local()
+                        + model.P->dofmap()->index_map->num_ghosts(), 0.0);
+  lumped_pressure(o.pressure_load, o.nodal_area, p);
+  double local = *std::max_element(p.begin(), p.end()), global;
+  MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_MAX, comm);
+  return global;
+}
+
+double Problem::lumped_pressure(const FormList& load_terms, const FormList& area_terms,
+                                std::span<double> p) const
+{
+  if (load_terms.empty())
+    return 0.0;
+  const auto load = assemble(load_terms);
+  const auto area = assemble(area_terms);
   const std::int32_t owned = model.P->dofmap()->index_map->size_local();
-  auto p = contact_pressure->x()->mutable_array();
   double local = 0.0, global = 0.0;
   for (std::int32_t i = 0; i < owned; ++i)
   {
@@ -487,7 +518,8 @@ double Problem::update_contact_pressure()
     if (p[i] > 0.0)
       local += a;
   }
-  contact_pressure->x()->scatter_fwd();
+  if (contact_pressure and p.data() == contact_pressure->x()->mutable_array().data())
+    contact_pressure->x()->scatter_fwd();
   MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_SUM, comm);
   return global;
 }

@@ -121,6 +121,10 @@ public:
   /// Collective.
   double update_contact_pressure();
 
+  /// The largest lumped pressure of one obstacle on its boundary.
+  /// Collective.
+  double obstacle_max_pressure(const std::string& boundary) const;
+
   /// A sum of linear forms on one test space (W, or P), assembled (ghost
   /// contributions added to their owners)
   dolfinx::la::Vector<double> assemble(const FormList& terms) const;
@@ -161,6 +165,10 @@ public:
   const std::shared_ptr<dolfinx::fem::Function<double>> contact_pressure;
 
 private:
+  /// The lumped pressure (the load terms over the area terms at each owned
+  /// vertex) into p, and the measure where it is positive
+  double lumped_pressure(const FormList& load, const FormList& area, std::span<double> p) const;
+
   /// A sub-space of W collapsed, and the W-dofs of its dofs
   struct Collapsed
   {

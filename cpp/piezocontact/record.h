@@ -130,6 +130,7 @@ private:
   StepState _state;
   Probes _probes;
   ContactGeometry _contact;
+  ObstaclePenetration _obstacles;
   StateFile _state_file;
   std::optional<Writer> _writer;
   OperationStats _step_files, _checkpoints, _summaries, _diagnostics;

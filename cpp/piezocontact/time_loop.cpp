@@ -228,7 +228,7 @@ private:
       _monitor.history.back()["charge"] = {_system->floating.residual_norm(), relative, relative};
       _acceptance.charges = relative;
     }
-    _acceptance.imbalance = force_imbalance(_problem, _system->balance, contact_force(_problem));
+    _acceptance.imbalance = force_imbalance(_problem, _system->balance);
     PetscReal norm;
     VecNorm(r, NORM_2, &norm);
     _signal = agreed_interrupt(_problem.comm);

@@ -60,6 +60,9 @@ def step_quantities(summary):
            "contact_force": [s["contact_force"] for s in steps]}
     if steps[0].get("max_penetration") is not None:  # null without a contact boundary
         out["max_penetration"] = [[s["max_penetration"]] for s in steps]
+    for name, c in steps[0].get("contacts", {}).items():  # each obstacle's
+        for key in c:
+            out[f"contacts.{name}.{key}"] = [np.ravel([s["contacts"][name][key]]) for s in steps]
     for name in steps[0].get("spring_force", {}):
         out[f"spring_force.{name}"] = [s["spring_force"][name] for s in steps]
     for name in steps[0].get("reactions", {}):
@@ -93,10 +96,13 @@ def agreement(run, ref):
     for key, b in qb.items():
         a = qa[key]
         size = float(np.max(np.abs(b), initial=0.0))
-        if key == "contact_force" or key.startswith(("reactions.", "spring_force.")):
+        if key == "contact_force" or key.startswith(("reactions.", "spring_force.")) \
+                or key.endswith(".force"):
             size = max(size, supported)
         if key in kind:
             size = kind_size[kind[key]]
+        if key.endswith("max_penetration"):  # ~0 under Nitsche: measured against u's size
+            size = max(size, float(np.max(np.abs(qb["probes.u"]), initial=0.0)))
         diff = np.abs(a - b)
         if size == 0.0:
             out[key] = (float(np.max(diff, initial=0.0)), float(np.max(diff, initial=0.0)))

@@ -130,7 +130,7 @@ def _mark(msh, dim, entities):
 
 
 Spec = collections.namedtuple("Spec", "manufactured contact electrodes boundary_keys degrees "
-                              "axisymmetric expression_keys")
+                              "axisymmetric expression_keys obstacles")
 
 
 class JitModel:
@@ -159,7 +159,8 @@ class JitModel:
         # a copy: the core's ModelSpec lives for the factory's call only
         self.spec = Spec(spec.manufactured, list(spec.contact), list(spec.electrodes),
                          {b: list(keys) for b, keys in spec.boundary_keys.items()},
-                         tuple(spec.degrees), spec.axisymmetric, list(spec.expression_keys))
+                         tuple(spec.degrees), spec.axisymmetric, list(spec.expression_keys),
+                         list(spec.obstacles))
         self.mesh = msh = python_mesh(named)
         cell_name = compat.cell_name(msh.topology)
         _, mixed, pressure = elements(cell_name, *spec.degrees)
@@ -271,6 +272,10 @@ class JitModel:
         if term.piece == "electrode":  # one term per region it bounds
             return [(b, c.on(self._ds_on(named.boundary_facets_of(b, r)), mat=mat))
                     for b in self.spec.electrodes for r, mat in self.materials.items()]
+        if term.piece == "obstacle":  # one term per region its facets bound
+            return [(b if not term.expression else (b, r),
+                     c.on(self._ds_on(named.boundary_facets_of(b, r)), mat=mat, load=self._load(b)))
+                    for b in self.spec.obstacles for r, mat in self.materials.items()]
         if term.piece == "exterior":  # a manufactured run has one material (checked)
             return [("", c.on(ufl.Measure("ds", domain=self.mesh), mat=one))]
         return [("", c.on(ufl.Measure("dx", domain=self.mesh)))]  # mesh
@@ -279,6 +284,10 @@ class JitModel:
         if term.expression:
             self.outputs.setdefault(term.slot, []).append(
                 (name, term.name, fem.Expression(term.build(c), self.points[term.points])))
+            if term.piece == "obstacle":  # the facets the expression is evaluated on
+                b, r = name
+                self.outputs[term.slot][-1] = (b, term.name, self.outputs[term.slot][-1][2],
+                                               self.named.boundary_facets_of(b, r))
             return
         form = term.build(c)
         if term.role == "output":
@@ -322,6 +331,8 @@ class JitModel:
         one = next(iter(self.materials.values())) if len(self.materials) == 1 else None
         pieces = {
             "region": [c.on(dx(named.region_of[r]), mat=m) for r, m in self.materials.items()],
+            "obstacle": [c.on(ds(named.tag_of[b]), mat=self._material_of(b), load=self._load(b))
+                         for b in self.spec.obstacles],
             "contact": [c.on(ds(contact))] if contact else [],
             "exterior": [c.on(ds, mat=one)],
             "mesh": [c.on(dx)],
@@ -347,6 +358,43 @@ class JitModel:
             F = compat.one_subdomain_data(F + extra_residual(u, phi, w, psi, self._hook_data()))
         self.F_whole = fem.form(F)
         self.J_whole = fem.form(pf.jacobian(F, self.x, self.dx_trial))
+
+    def _material_of(self, boundary):
+        """The material of the cells a boundary's facets bound, in the whole
+        form (one: it has no pieces of a boundary and a region)."""
+        regions = [r for r, _ in self.materials.items()
+                   if len(self.named.boundary_facets_of(boundary, r)) > 0]
+        regions = self.mesh.comm.allgather(regions)
+        regions = sorted({r for part in regions for r in part})
+        if len(regions) > 1:
+            raise NotImplementedError(
+                f"boundaries.{boundary}.contact: the reference engine takes a contact boundary "
+                f"with an obstacle that bounds one region (it bounds {', '.join(regions)})")
+        return self.materials[regions[0]] if regions else next(iter(self.materials.values()))
+
+    def _obstacles(self):
+        """{boundary: cpp.ObstacleContact} of the contact boundaries with an
+        obstacle or a block of their own."""
+        c = compat.cpp
+        out = {b: cpp.ObstacleContact() for b in self.spec.obstacles}
+        force = {b: [[] for _ in range(self.mesh.geometry.dim)] for b in out}
+        for b, name, f in self._output("obstacle_force"):
+            force[b]["xyz".index(name[-1])].append(c(f))
+        for b, oc in out.items():
+            oc.force = force[b]
+            oc.pressure_load = [c(f) for n, _, f in self._output("obstacle_pressure_load")
+                                if n == b]
+            oc.nodal_area = [c(f) for n, _, f in self._output("obstacle_nodal_area") if n == b]
+            oc.contact_measure = [c(f) for n, _, f in self._output("obstacle_contact_measure")
+                                  if n == b]
+            penetration = []
+            for n, _, e, facets in self._output("obstacle_penetration"):
+                if n == b:
+                    p = cpp.ObstaclePenetration()
+                    p.facets, p.expression = facets, c(e)
+                    penetration.append(p)
+            oc.penetration = penetration
+        return out
 
     def _output(self, slot):
         return self.outputs.get(slot, [])
@@ -393,6 +441,7 @@ class JitModel:
         for b, _, f in self._output("spring_force"):
             springs.setdefault(b, []).append(c(f))
         m.spring_force = springs
+        m.obstacles = self._obstacles()
         return m
 
 

@@ -193,8 +193,7 @@ class _Newton:
         # wants the forces to balance
         self.acceptance = cpp.Acceptance()
         self.acceptance.fields = all(r <= INCREMENT_RTOL for r in relative.values())
-        self.acceptance.imbalance = cpp.force_imbalance(self.problem, self.balance,
-                                                        cpp.contact_force(self.problem))
+        self.acceptance.imbalance = cpp.force_imbalance(self.problem, self.balance)
         if self.acceptance.accepted(self.rtol):
             return PETSc.SNES.ConvergedReason.CONVERGED_SNORM_RELATIVE
         if it >= snes.getTolerances()[3]:
