@@ -31,14 +31,33 @@ compat = _load_compat()
 MAX_TRIANGLES = 5e6
 
 
-def build_polygon(points, edge_names, size):
+def build_polygon(points, edge_names, size, graded=None):
     """Add the polygon to the current gmsh model and mesh it. edge_names[i]
-    names the edge from points[i] to points[i+1] (closing the loop)."""
+    names the edge from points[i] to points[i+1] (closing the loop).
+    graded = (i, radius, coarse): cells of `size` within `radius` of
+    points[i], growing linearly to `coarse` at ten times that distance."""
     geo = gmsh.model.geo
     tags = [geo.addPoint(x, y, 0.0, size) for x, y in points]
     lines = [geo.addLine(tags[i], tags[(i + 1) % len(tags)]) for i in range(len(tags))]
     surface = geo.addPlaneSurface([geo.addCurveLoop(lines)])
     geo.synchronize()
+    if graded:
+        i, radius, coarse = graded
+        field = gmsh.model.mesh.field
+        distance = field.add("Distance")
+        try:
+            field.setNumbers(distance, "PointsList", [tags[i]])
+        except Exception:  # gmsh < 4.10 calls it NodesList
+            field.setNumbers(distance, "NodesList", [tags[i]])
+        threshold = field.add("Threshold")
+        field.setNumber(threshold, "InField", distance)
+        for name, value in (("SizeMin", size), ("SizeMax", coarse), ("DistMin", radius),
+                            ("DistMax", 10 * radius)):
+            field.setNumber(threshold, name, value)
+        field.setAsBackgroundMesh(threshold)
+        for option in ("MeshSizeExtendFromBoundary", "MeshSizeFromPoints",
+                       "MeshSizeFromCurvature"):
+            gmsh.option.setNumber(f"Mesh.{option}", 0)
     names = sorted(set(edge_names))
     for tag, name in enumerate(names, start=1):
         members = [line for line, n in zip(lines, edge_names) if n == name]
@@ -50,7 +69,7 @@ def build_polygon(points, edge_names, size):
     return {name: tag for tag, name in enumerate(names, start=1)}
 
 
-def write_mesh(points, edge_names, size, output, comm=MPI.COMM_WORLD):
+def write_mesh(points, edge_names, size, output, comm=MPI.COMM_WORLD, graded=None):
     """Generate on rank 0, distribute, write XDMF + the names sidecar."""
     output = Path(output)
     boundaries = None
@@ -59,7 +78,7 @@ def write_mesh(points, edge_names, size, output, comm=MPI.COMM_WORLD):
     try:
         if comm.rank == 0:
             gmsh.model.add(output.stem)
-            boundaries = build_polygon(points, edge_names, size)
+            boundaries = build_polygon(points, edge_names, size, graded)
         mesh, _, facet_tags = gmshio.model_to_mesh(gmsh.model, comm, 0, gdim=2)
     finally:
         gmsh.finalize()
@@ -80,7 +99,7 @@ def write_mesh(points, edge_names, size, output, comm=MPI.COMM_WORLD):
     return mesh
 
 
-def main(points, edge_names, description):
+def main(points, edge_names, description, graded=None):
     ap = argparse.ArgumentParser(description=description)
     ap.add_argument("--size", type=float, required=True, help="target cell size (m)")
     ap.add_argument("--output", required=True, help="NAME.xdmf to write")
@@ -90,11 +109,13 @@ def main(points, edge_names, description):
     # refuse what would take hours and all the memory, before gmsh tries
     area = 0.5 * abs(sum(x0 * y1 - x1 * y0 for (x0, y0), (x1, y1)
                          in zip(points, points[1:] + points[:1])))
+    if graded:  # fine cells near one point only
+        area = min(area, 3.15 * graded[1] ** 2 + 3.15 * (10 * graded[1]) ** 2 / 10)
     estimate = area / (0.433 * args.size ** 2)  # equilateral triangles of side size
     if estimate > MAX_TRIANGLES:
         sys.exit(f"error: --size {args.size:g}: about {estimate:.2g} triangles "
                  f"(at most {MAX_TRIANGLES:.0e})")
-    mesh = write_mesh(points, edge_names, args.size, args.output)
+    mesh = write_mesh(points, edge_names, args.size, args.output, graded=graded)
     cells = mesh.topology.index_map(2).size_global
     if MPI.COMM_WORLD.rank == 0:
         print(f"{args.output}: {cells} triangles, size {args.size:g}")

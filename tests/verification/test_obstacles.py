@@ -1,0 +1,206 @@
+"""Contact with rigid obstacles, by normal compliance and by Nitsche's
+method (the Signorini limit), against what no one here wrote: Hertz's
+solutions, and the paper's foundation as the special case of a plane.
+
+Hertz (K. L. Johnson, Contact Mechanics, CUP 1985, sections 4.2 and 5.2):
+a rigid indenter of radius R pressed with a force P on an elastic
+half-space of modulus E* = E / (1 - nu^2) (plane strain), frictionless,
+  cylinder (2D, P per unit length): a = sqrt(4 P R / (pi E*)), p0 = 2 P / (pi a)
+  sphere (axisymmetric, 3D):         a = (3 P R / (4 E*))^(1/3), p0 = 3 P / (2 pi a^2)
+a the contact half-width (radius), p0 the peak pressure. The force P is
+the run's; the half-space is a 40 mm block (meshes/hertz_block.py) whose
+contact zone (a ~ 0.5 mm) is resolved by cells of 20 um, at degree 2."""
+
+import json
+import math
+
+import numpy as np
+import pytest
+from conftest import ENGINES, ROOT, SQUARE, run_solver
+
+E, NU = 100e9, 0.3
+E_STAR = E / (1 - NU ** 2)
+R = 20e-3                    # m: the indenter's radius
+
+
+def isotropic():
+    """An elastic isotropic material with the piezoelectric coupling off (a
+    permittivity keeps the electric equation regular)."""
+    lam, mu = E * NU / ((1 + NU) * (1 - 2 * NU)), E / (2 * (1 + NU))
+    B = np.zeros((6, 6))
+    B[:3, :3] = lam
+    B[:3, :3] += 2 * mu * np.eye(3)
+    B[3:, 3:] = mu * np.eye(3)
+    return {"elastic": B.tolist(), "relaxation_time": 1e-9,  # s: A = 1e-9 B, viscosity negligible
+            "piezoelectric": np.zeros((3, 6)).tolist(),
+            "permittivity": (1e-9 * np.eye(3)).tolist()}
+
+
+def hertz_config(formulation, depth, contact, size=0.02e-3, steps=1):
+    """The rigid cylinder (plane strain) or sphere (axisymmetric) of radius
+    R touching the block's top at the origin, moved down by `depth`."""
+    block = {"obstacle": {"sphere": {"center": [0.0, R], "radius": R},
+                          "displacement": [0.0, -depth]}, **contact}
+    return {
+        "mesh": {"type": "gmsh", "geometry": str(ROOT / "meshes" / "hertz_block.py"),
+                 "size": size},
+        "formulation": formulation,
+        "elements": {"degree": 2},
+        "material": isotropic(),
+        "boundaries": {
+            "axis": {"displacement": [0.0, None]},
+            "bottom": {"displacement": [0.0, 0.0], "potential": 0.0},
+            "side": {},
+            "top": {"contact": block},
+        },
+        "time": {"T": 1.0, "steps": steps},
+        "probes": [[0.0, 0.0]],
+        "output": {"xdmf": False},
+    }
+
+
+def hertz(formulation, P):
+    """(a, p0) of Hertz for the force P (per unit length in 2D)."""
+    if formulation == "axisymmetric":
+        a = (3 * P * R / (4 * E_STAR)) ** (1 / 3)
+        return a, 3 * P / (2 * math.pi * a ** 2)
+    a = math.sqrt(4 * P * R / (math.pi * E_STAR))
+    return a, 2 * P / (math.pi * a)
+
+
+def measured(formulation, summary):
+    """(P, a, p0) of the last step: the force on the whole indenter (minus
+    the indenter's force on the body, along y), the contact half-width
+    (radius) and the peak pressure."""
+    c = summary["steps"][-1]["contacts"]["top"]
+    if formulation == "axisymmetric":  # per revolution; contact_length is the disc's area
+        return -c["force"][1], math.sqrt(c["contact_length"] / math.pi), c["max_pressure"]
+    # the half model of plane strain: twice its force, its contact length is a
+    return -2 * c["force"][1], c["contact_length"], c["max_pressure"]
+
+
+NITSCHE = {"method": "nitsche"}
+
+
+@pytest.mark.parametrize("formulation, depth", [("plane_strain", 28e-6),
+                                                ("axisymmetric", 12.5e-6)])
+def test_hertz_nitsche(tmp_path, formulation, depth):
+    cfg = tmp_path / "hertz.json"
+    cfg.write_text(json.dumps(hertz_config(formulation, depth, NITSCHE)))
+    summary, _ = run_solver("cpp", tmp_path / "out", config=cfg)
+    P, a, p0 = measured(formulation, summary)
+    a_h, p0_h = hertz(formulation, P)
+    print(f"{formulation}: P = {P:.6g}, a = {a:.6g} (Hertz {a_h:.6g}, {a / a_h - 1:+.2%}), "
+          f"p0 = {p0:.6g} (Hertz {p0_h:.6g}, {p0 / p0_h - 1:+.2%})")
+    assert a / R < 0.05  # Hertz's small contact
+    assert abs(a / a_h - 1) < 0.01 and abs(p0 / p0_h - 1) < 0.01
+
+
+def plane_foundation(cfg):
+    """Example 1 with its foundation (gap 0 below y = 0) as an obstacle plane."""
+    cfg = dict(cfg)
+    cfg["contact"] = {"c_p": cfg["contact"]["c_p"],
+                      "obstacle": {"plane": {"point": [0.0, -cfg["contact"]["gap"]],
+                                             "normal": [0.0, 1.0]}}}
+    return cfg
+
+
+def test_plane_parallel_to_the_boundary_is_the_foundation(tmp_path):
+    """The obstacle plane y = -g reproduces the paper's foundation offset by
+    g: the same steps, probes and contact forces."""
+    base = json.loads(SQUARE.read_text())
+    base["mesh"]["n"], base["time"]["steps"] = 16, 8
+    base["output"] = {"xdmf": False}
+    runs = {}
+    for name, cfg in (("foundation", base), ("plane", plane_foundation(base))):
+        path = tmp_path / f"{name}.json"
+        path.write_text(json.dumps(cfg))
+        runs[name], _ = run_solver("cpp", tmp_path / name, config=path)
+    for a, b in zip(runs["foundation"]["steps"], runs["plane"]["steps"]):
+        assert a["newton_iterations"] == b["newton_iterations"]
+        assert a["probes"] == b["probes"]
+        assert a["contact_force"] == b["contact_force"]
+        assert a["max_penetration"] == pytest.approx(b["max_penetration"], abs=1e-20)
+
+
+def relative_difference(a, b):
+    """Largest difference of the step quantities of two summaries, each
+    relative to that quantity's size over the run."""
+    worst = 0.0
+    for key in ("probes", "contacts"):
+        def values(summary):
+            return np.array([v for s in summary["steps"] for v in _numbers(s[key])])
+        va, vb = values(a), values(b)
+        scale = np.abs(va).max()
+        worst = max(worst, np.abs(va - vb).max() / scale if scale else 0.0)
+    return worst
+
+
+def _numbers(node):
+    if isinstance(node, dict):
+        return [v for k in sorted(node) for v in _numbers(node[k])]
+    if isinstance(node, list):
+        return [v for item in node for v in _numbers(item)]
+    return [float(node)] if isinstance(node, (int, float)) and not isinstance(node, bool) else []
+
+
+@pytest.mark.parametrize("contact", [NITSCHE, {"c_p": 1e16}], ids=["nitsche", "penalty"])
+@pytest.mark.parametrize("formulation, depth", [("plane_strain", 28e-6),
+                                                ("axisymmetric", 12.5e-6)])
+def test_engines_agree_with_obstacles(tmp_path, formulation, depth, contact):
+    """The three engines on a coarse Hertz run in two steps, to 1e-9 of
+    each quantity's size (Newton stops on the same error bound)."""
+    cfg = tmp_path / "hertz.json"
+    cfg.write_text(json.dumps(hertz_config(formulation, depth, contact, size=0.1e-3, steps=2)))
+    runs = {e: run_solver(e, tmp_path / e, config=cfg)[0] for e in ENGINES}
+    for e in ENGINES[1:]:
+        assert relative_difference(runs["cpp"], runs[e]) < 1e-9, e
+
+
+def squeezed_config(contact, depth):
+    """The unit square between two obstacle planes, y = 0 below and y = 1
+    above, the upper one moved down by `depth`, each its own contact block;
+    x = 0 on rollers, x = 1 free: uniaxial stress sigma_yy in plane strain."""
+    def block(point, normal, moved=None):
+        obstacle = {"plane": {"point": point, "normal": normal}}
+        if moved is not None:
+            obstacle["displacement"] = {"value": [0.0, -moved], "history": {"ramp": 1.0}}
+        return {"obstacle": obstacle, **contact}
+    return {
+        "mesh": {"type": "unit_square", "n": 4},
+        "material": {**isotropic(), "relaxation_time": 1e-12},
+        "boundaries": {
+            "left": {"displacement": [0.0, None]},
+            "bottom": {"contact": block([0.0, 0.0], [0.0, 1.0]), "potential": 0.0},
+            "top": {"contact": block([0.0, 1.0], [0.0, -1.0], depth)},
+            "right": {},
+        },
+        "time": {"T": 1.0, "steps": 2},
+        "probes": [[1.0, 1.0], [0.0, 0.0]],
+        "output": {"xdmf": False},
+    }
+
+
+@pytest.mark.parametrize("contact", [NITSCHE, {"c_p": 1e12}], ids=["nitsche", "penalty"])
+def test_a_block_squeezed_between_two_obstacles(tmp_path, contact):
+    """Each boundary its own obstacle; exact: the uniform stress
+    sigma_yy = -E* (delta - 2 r) of a unit height, r = 0 for Nitsche (the
+    Signorini limit: no penetration at all) and r = E* delta / (c_p + 2 E*)
+    for the penalty; P1 holds the linear fields exactly."""
+    depth = 1e-3
+    cfg = tmp_path / "squeezed.json"
+    cfg.write_text(json.dumps(squeezed_config(contact, depth)))
+    summary, _ = run_solver("cpp", tmp_path / "out", config=cfg)
+    for step in summary["steps"]:
+        delta = depth * step["t"]
+        r = 0.0 if contact is NITSCHE else E_STAR * delta / (contact["c_p"] + 2 * E_STAR)
+        stress = E_STAR * (delta - 2 * r)
+        c = step["contacts"]
+        assert c["bottom"]["force"] == pytest.approx([0.0, stress], abs=1e-9 * stress)
+        assert c["top"]["force"] == pytest.approx([0.0, -stress], abs=1e-9 * stress)
+        for name in ("bottom", "top"):
+            assert c[name]["max_penetration"] == pytest.approx(r, abs=1e-9 * delta)
+            assert c[name]["max_pressure"] == pytest.approx(stress, rel=1e-9)
+            assert c[name]["contact_length"] == pytest.approx(1.0, rel=1e-12)
+        top_corner = step["probes"][0]["u"]
+        assert top_corner[1] == pytest.approx(-(delta - r), abs=1e-9 * delta)
