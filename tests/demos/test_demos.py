@@ -20,6 +20,7 @@ DEMOS = {
     "convergence_study": [PY, "demos/convergence_study.py", "--finest", "16"],
     "disc": [PY, "demos/demo_disc.py"],
     "plate": [PY, "demos/demo_plate.py", "--set", "mesh.n=8"],
+    "indentation": [PY, "demos/demo_indentation.py"],
 }
 
 

@@ -24,6 +24,7 @@ SMALL = {  # the smallest honest size of each: every feature it has still at wor
     "manufactured_3d.json": ["mesh.n=[2,2,2]", "time.steps=2"],
     "disc.json": ["mesh.size=1e-3", "time.steps=4"],
     "plate.json": ["mesh.n=4", "time.steps=3"],
+    "indentation.json": ["mesh.size=40e-6", "time.steps=3"],
 }
 
 
