@@ -204,3 +204,91 @@ def test_a_block_squeezed_between_two_obstacles(tmp_path, contact):
             assert c[name]["contact_length"] == pytest.approx(1.0, rel=1e-12)
         top_corner = step["probes"][0]["u"]
         assert top_corner[1] == pytest.approx(-(delta - r), abs=1e-9 * delta)
+
+
+def hertz_3d_config(msh, depth, contact, steps=1):
+    """The rigid sphere of radius R on a quarter of a 20 mm block
+    (meshes/hertz_quarter_msh.py), the symmetry planes on rollers."""
+    block = {"obstacle": {"sphere": {"center": [0.0, R, 0.0], "radius": R},
+                          "displacement": {"value": [0.0, -depth, 0.0],
+                                           "history": {"ramp": 1.0}}}, **contact}
+    return {
+        "mesh": {"type": "msh", "path": str(msh)},
+        "elements": {"degree": 2},
+        "material": isotropic(),
+        "boundaries": {
+            "sym_x": {"displacement": [0.0, None, None]},
+            "sym_z": {"displacement": [None, None, 0.0]},
+            "bottom": {"displacement": [0.0, 0.0, 0.0], "potential": 0.0},
+            "sides": {},
+            "top": {"contact": block},
+        },
+        "time": {"T": 1.0, "steps": steps},
+        "probes": [[0.0, 0.0, 0.0]],
+        "output": {"xdmf": False, "nodal": "none"},
+    }
+
+
+def test_hertz_sphere_in_3d(tmp_path):
+    """The sphere on a quarter model in 3D, Nitsche at P2, driven in 4 steps:
+    a and p0 against Hertz for each step's force, and the force against
+    the depth: P ~ delta^(3/2), the exponent from the last two steps (the
+    block is 20 mm deep on a rigid base, not a half-space: measured 1.514)."""
+    import subprocess
+    msh = tmp_path / "quarter.msh"
+    subprocess.run(["/usr/bin/python3", str(ROOT / "meshes" / "hertz_quarter_msh.py"), "--size",
+                    "50e-6", "--output", str(msh)], check=True, capture_output=True)
+    depth = 12.5e-6
+    cfg = tmp_path / "hertz3d.json"
+    cfg.write_text(json.dumps(hertz_3d_config(msh, depth, NITSCHE, steps=4)))
+    summary, _ = run_solver("cpp", tmp_path / "out", config=cfg)
+    forces = []
+    for step in summary["steps"]:
+        c = step["contacts"]["top"]
+        P, a, p0 = -4 * c["force"][1], math.sqrt(4 * c["contact_area"] / math.pi), c["max_pressure"]
+        a_h, p0_h = hertz("axisymmetric", P)
+        print(f"t = {step['t']}: P = {P:.6g}, a = {a:.6g} ({a / a_h - 1:+.2%}), "
+              f"p0 = {p0:.6g} ({p0 / p0_h - 1:+.2%})")
+        forces.append(P)
+    assert abs(a / a_h - 1) < 0.01 and abs(p0 / p0_h - 1) < 0.01  # the last step's
+    exponent = math.log(forces[-1] / forces[-2]) / math.log(4 / 3)
+    print(f"P ~ delta^{exponent:.4f}")
+    assert abs(exponent - 1.5) < 0.03
+
+
+# PZT-5H as config/materials.json gives it (c66 = (c11 - c12) / 2: transversely isotropic)
+EPS0 = 8.854e-12
+PZT5H = dict(c11=126e9, c12=79.5e9, c13=84.1e9, c33=117e9, c44=23.0e9, c66=(126e9 - 79.5e9) / 2,
+             e31=-6.5, e33=23.3, e15=17.0, k11=1700 * EPS0, k33=1470 * EPS0)
+
+
+@pytest.mark.parametrize("surface", ["grounded", "charge-free"])
+def test_piezoelectric_indentation(tmp_path, surface):
+    """A rigid sphere (R = 20 mm) on poled PZT-5H (the 40 mm block, poled
+    into the body), Nitsche, P2, against the transversely isotropic
+    piezoelectric half-space (tests/verification/piezo_half_space.py: the
+    surface Green's function of the half-space and the Hertz-type contact
+    solution, derived here by the route of Giannakopoulos & Suresh 1999,
+    Chen & Ding 1999 and Karapetian, Kachanov & Kalinin; its elastic limit
+    checked against Delafargue & Ulm 2004). Grounded surface (a conducting
+    indenter, or an electrode on the surface at 0 V): P = 4 C1* a^3 / (3 R);
+    charge-free surface (an insulating indenter): P = 4 E_ins a^3 / (3 R)
+    and the potential phi(0) = (C3*/C4*) a^2 / R induced under it."""
+    from piezo_half_space import _ti, sphere
+    cfg = hertz_config("axisymmetric", 12.5e-6, NITSCHE)
+    cfg["material"] = {"preset": "PZT-5H", "poling": [0, -1], "relaxation_time": 1e-9}
+    if surface == "grounded":
+        cfg["boundaries"]["top"]["potential"] = 0.0
+    path = tmp_path / "indent.json"
+    path.write_text(json.dumps(cfg))
+    summary, _ = run_solver("cpp", tmp_path / "out", config=path)
+    P, a, p0 = measured("axisymmetric", summary)
+    exact = sphere(*_ti(*PZT5H.values()), R, a)["conducting" if surface == "grounded"
+                                                else "insulating"]
+    print(f"{surface}: P = {P:.6g} ({P / exact['P'] - 1:+.2%}), a = {a:.6g}, "
+          f"p0 = {p0:.6g} ({p0 / exact['p0'] - 1:+.2%})")
+    assert abs(P / exact["P"] - 1) < 0.01 and abs(p0 / exact["p0"] - 1) < 0.01
+    if surface == "charge-free":
+        phi = summary["steps"][-1]["probes"][0]["phi"]
+        print(f"phi(0) = {phi:.6g} ({phi / exact['phi_center'] - 1:+.2%})")
+        assert abs(phi / exact["phi_center"] - 1) < 0.02
