@@ -279,7 +279,11 @@ def obstacle_geometry(domain, ob, nu=None):
     (centre C, radius R; a circle in 2D) or a cylinder (a point P_a of its
     axis, direction A, radius R_a); with none of them the paper's foundation,
     d = g along n_o = -nu (nu the body's outward normal: None where it has
-    none, as in an expression on cells, where that kind is not evaluated)."""
+    none, as in an expression on cells, where that kind is not evaluated).
+    ob["distance"], where given (a UFL expression of x and t: the Python data
+    hook), replaces the config's geometry: n_o is its normalised gradient."""
+    if "distance" in ob:
+        return ob["distance"], _unit(ufl.grad(ob["distance"]))
     X = ufl.SpatialCoordinate(domain) - ob["U_o"]
     N = _unit(ob["plane_N"])
     A = _unit(ob["cylinder_A"])

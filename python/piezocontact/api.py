@@ -41,7 +41,9 @@ def solve(config, output, engine="cpp", extra_residual=None, contact_law=None, o
     contact_law(r, c_p): replaces the normal compliance law p.
     data: {config key: f(x, t)}: loads, charges or the gap as UFL
       expressions of x = ufl.SpatialCoordinate and the time t, added to
-      the config's value of that key (model.JitModel lists the keys).
+      the config's value of that key; "boundaries.NAME.contact.obstacle":
+      the signed distance to an obstacle of any shape, replacing the
+      config's obstacle geometry (model.JitModel lists the keys).
     observer(step, record): called after each accepted step.
     Returns the summary (the dict written to output/summary.json). Raises
     ConfigError, NewtonFailure, OutputError, Interrupted (piezocontact.cpp)."""

@@ -152,7 +152,11 @@ class JitModel:
         the config gives for that key. Keys: "loads.body_force",
         "loads.charge_density", "boundaries.NAME.traction",
         "boundaries.NAME.surface_charge" (a gap that varies: an expression
-        in the config)."""
+        in the config); and "boundaries.NAME.contact.obstacle": the signed
+        distance d(x, t) to an obstacle of any shape (>= 0 outside it; the
+        contact normal is its normalised gradient), which replaces the
+        geometry of the obstacle the config gives that boundary (its method
+        and law stay the config's)."""
 
     def __init__(self, named, spec, extra_residual=None, contact_law=None, data=None):
         self.named = named
@@ -205,8 +209,12 @@ class JitModel:
                            subdomain_data=_mark(self.mesh, tdim - 1, facets))(1)
 
     def _load(self, boundary):
-        """A boundary's data as its terms see them (Constants and fields)."""
-        return pf.with_fields(self.loads[boundary], self._fields_of(boundary))
+        """A boundary's data as its terms see them (Constants and fields,
+        and the hook's distance to its obstacle)."""
+        data = pf.with_fields(self.loads[boundary], self._fields_of(boundary))
+        if (distance := self.ufl_data.get(boundary, {}).get("distance")) is not None:
+            data["distance"] = distance
+        return data
 
     def _fields_of(self, piece):
         """The parts that vary in space of a piece's data ("": the shared
@@ -233,6 +241,9 @@ class JitModel:
         x = ufl.SpatialCoordinate(self.mesh)
         for key, f in data.items():
             parts = key.split(".")
+            if parts[0] == "boundaries" and parts[2:] == ["contact", "obstacle"]:
+                out.setdefault(parts[1], {})["distance"] = self._distance(key, f(x, self.data["t"]))
+                continue
             if key in shared:
                 piece, name = "", shared[key]
                 shape = groups["shared"][name].shape
@@ -244,13 +255,28 @@ class JitModel:
             else:
                 raise ValueError(f"data: {key!r}: not a datum that varies in space (one of "
                                  f"{', '.join(sorted(shared))}, boundaries.NAME."
-                                 f"{{{', '.join(sorted(load))}}})")
+                                 f"{{{', '.join(sorted(load))}}}, "
+                                 "boundaries.NAME.contact.obstacle)")
             expr = ufl.as_ufl(f(x, self.data["t"]))
             if expr.ufl_shape != shape:
                 raise ValueError(f"data: {key}: a UFL expression of shape {expr.ufl_shape}, "
                                  f"expected {shape}")
             out.setdefault(piece, {})[name] = expr
         return out
+
+    def _distance(self, key, d):
+        """The hook's signed distance to a boundary's obstacle, checked."""
+        boundary = key.split(".")[1]
+        if boundary not in self.spec.obstacles:
+            raise ValueError(
+                f"data: {key}: the boundary has no obstacle in the config (give it \"contact\": "
+                "{\"obstacle\": ...} with the method: the distance replaces the obstacle's "
+                "geometry)")
+        d = ufl.as_ufl(d)
+        if d.ufl_shape != ():
+            raise ValueError(f"data: {key}: a signed distance is a scalar UFL expression, "
+                             f"not of shape {d.ufl_shape}")
+        return d
 
     def _sets(self, boundary, key):
         return key in self.spec.boundary_keys.get(boundary, [])

@@ -292,3 +292,69 @@ def test_piezoelectric_indentation(tmp_path, surface):
         phi = summary["steps"][-1]["probes"][0]["phi"]
         print(f"phi(0) = {phi:.6g} ({phi / exact['phi_center'] - 1:+.2%})")
         assert abs(phi / exact["phi_center"] - 1) < 0.02
+
+
+@pytest.mark.parametrize("engine", ["cpp", "reference"])
+def test_an_obstacle_given_in_ufl(tmp_path, engine):
+    """From Python, the signed distance of any obstacle as a UFL expression
+    of x and t (the data hook "boundaries.NAME.contact.obstacle"): the
+    squeezed block's upper plane given so, moving as the config's ramp does,
+    gives the config's answer to round-off; a boundary without an obstacle
+    in the config is refused."""
+    import piezocontact
+    import ufl
+    depth = 1e-3
+    cfg = squeezed_config(NITSCHE, depth)
+    by_config = piezocontact.solve(cfg, tmp_path / "config", engine=engine, progress=False)
+
+    def upper_plane(x, t):  # y = 1 - depth t, the obstacle above it
+        return (1 - depth * ufl.min_value(t, 1)) - x[1]
+    by_ufl = piezocontact.solve(cfg, tmp_path / "ufl", engine=engine, progress=False,
+                                data={"boundaries.top.contact.obstacle": upper_plane})
+    for a, b in zip(by_config["steps"], by_ufl["steps"]):
+        for name in ("bottom", "top"):
+            assert b["contacts"][name]["force"] == pytest.approx(
+                a["contacts"][name]["force"], abs=1e-12 * abs(a["contacts"][name]["force"][1]))
+        assert b["probes"][0]["u"] == pytest.approx(a["probes"][0]["u"], abs=1e-15)
+    with pytest.raises(ValueError, match="the boundary has no obstacle in the config"):
+        piezocontact.solve(cfg, tmp_path / "bad", engine=engine, progress=False,
+                           data={"boundaries.left.contact.obstacle": upper_plane})
+
+
+@pytest.mark.parametrize("obstacle, nearest", [
+    ({"cylinder": {"point": [0.5, 3.0, -7.0], "axis": [0.0, 0.0, 2.0], "radius": 1.0}}, 1.0),
+    ({"sphere": {"center": [0.5, 3.5, 0.5], "radius": 1.5}}, 1.0),
+    ({"plane": {"point": [0.0, 1.25, 0.0], "normal": [0.0, -3.0, 0.0]}}, 0.25)])
+def test_obstacle_geometry_in_3d(tmp_path, obstacle, nearest):
+    """Each obstacle kind above the unit cube's top (y = 1), out of reach:
+    the largest penetration is minus the distance of the nearest node
+    (x = z = 0.5 on the top for the cylinder along z through (0.5, 3), R = 1,
+    and the sphere centred at (0.5, 3.5, 0.5), R = 1.5; the plane y = 1.25),
+    with the axis and the normal given at any length; no force."""
+    cfg = {"mesh": {"type": "box", "n": [2, 2, 2], "size": [1.0, 1.0, 1.0]},
+           "material": {"preset": "PZT-5H", "poling": [0, 1, 0]},
+           "boundaries": {"bottom": {"displacement": [0.0, 0.0, 0.0], "potential": 0.0},
+                          "top": {"contact": {"obstacle": obstacle, "c_p": 1e12}}},
+           "time": {"T": 1.0, "steps": 1}, "output": {"xdmf": False}}
+    path = tmp_path / "cube.json"
+    path.write_text(json.dumps(cfg))
+    summary, _ = run_solver("cpp", tmp_path / "out", config=path)
+    top = summary["steps"][-1]["contacts"]["top"]
+    assert top["max_penetration"] == pytest.approx(-nearest, abs=1e-14)
+    assert top["force"] == [0.0, 0.0, 0.0] and top["contact_area"] == 0.0
+
+
+def test_an_obstacle_moved_by_expressions(tmp_path):
+    """The squeezed block's upper plane moved by expressions of t instead of
+    a ramp: the same steps to round-off."""
+    runs = {}
+    for name, moved in (("ramp", None), ("expression", ["0", "-1e-3*t"])):
+        cfg = squeezed_config(NITSCHE, 1e-3)
+        if moved:
+            cfg["boundaries"]["top"]["contact"]["obstacle"]["displacement"] = moved
+        path = tmp_path / f"{name}.json"
+        path.write_text(json.dumps(cfg))
+        runs[name], _ = run_solver("cpp", tmp_path / name, config=path)
+    for a, b in zip(runs["ramp"]["steps"], runs["expression"]["steps"]):
+        assert b["contacts"]["top"]["force"] == pytest.approx(a["contacts"]["top"]["force"],
+                                                              rel=1e-12, abs=1e-3)
