@@ -11,36 +11,17 @@ a gmsh .msh file (config "type": "msh").
 """
 
 import gmsh
-from physical_groups import msh_script, name_groups
+from physical_groups import grade, msh_script, name_groups
 
 L, FINE_RADIUS, COARSE = 20e-3, 0.6e-3, 4e-3
-
-
-def grade(size):
-    """Cells of `size` within FINE_RADIUS of the origin, COARSE from ten
-    times that distance on."""
-    field = gmsh.model.mesh.field
-    origin = [p for _, p in gmsh.model.getEntities(0)
-              if max(abs(c) for c in gmsh.model.getValue(0, p, [])) < 1e-12]
-    distance = field.add("Distance")
-    try:
-        field.setNumbers(distance, "PointsList", origin)
-    except Exception:  # gmsh < 4.10 calls it NodesList
-        field.setNumbers(distance, "NodesList", origin)
-    threshold = field.add("Threshold")
-    field.setNumber(threshold, "InField", distance)
-    for name, value in (("SizeMin", size), ("SizeMax", COARSE), ("DistMin", FINE_RADIUS),
-                        ("DistMax", 10 * FINE_RADIUS)):
-        field.setNumber(threshold, name, value)
-    field.setAsBackgroundMesh(threshold)
-    for option in ("MeshSizeExtendFromBoundary", "MeshSizeFromPoints", "MeshSizeFromCurvature"):
-        gmsh.option.setNumber(f"Mesh.{option}", 0)
 
 
 def build(size):
     gmsh.model.occ.addBox(0, -L, 0, L, L, L)
     gmsh.model.occ.synchronize()
-    grade(size)
+    origin = [p for _, p in gmsh.model.getEntities(0)
+              if max(abs(c) for c in gmsh.model.getValue(0, p, [])) < 1e-12]
+    grade(origin, size, FINE_RADIUS, COARSE)
     tol = 1e-6  # OCC pads bounding boxes by about 1e-7
     faces = {"bottom": [], "sides": [], "sym_x": [], "sym_z": [], "top": []}
     for _, face in gmsh.model.getEntities(2):

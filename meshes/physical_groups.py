@@ -16,6 +16,26 @@ def name_groups(dim, groups):
         gmsh.model.setPhysicalName(dim, tag, name)
 
 
+def grade(points, size, radius, coarse):
+    """Cells of `size` within `radius` of some model points (tags), growing
+    linearly to `coarse` at ten times that distance: the background mesh
+    size, the only one gmsh uses then."""
+    field = gmsh.model.mesh.field
+    distance = field.add("Distance")
+    try:
+        field.setNumbers(distance, "PointsList", points)
+    except Exception:  # gmsh < 4.10 calls it NodesList
+        field.setNumbers(distance, "NodesList", points)
+    threshold = field.add("Threshold")
+    field.setNumber(threshold, "InField", distance)
+    for name, value in (("SizeMin", size), ("SizeMax", coarse), ("DistMin", radius),
+                        ("DistMax", 10 * radius)):
+        field.setNumber(threshold, name, value)
+    field.setAsBackgroundMesh(threshold)
+    for option in ("MeshSizeExtendFromBoundary", "MeshSizeFromPoints", "MeshSizeFromCurvature"):
+        gmsh.option.setNumber(f"Mesh.{option}", 0)
+
+
 def msh_script(name, build, description, size, output=None, binary=False):
     """The main of a script that writes one .msh file: --size (default
     `size`) and --output (default `output`, else required); build(size)

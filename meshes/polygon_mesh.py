@@ -12,6 +12,7 @@ from pathlib import Path
 
 import gmsh
 from dolfinx import io
+from physical_groups import grade
 from dolfinx.io import gmshio
 from mpi4py import MPI
 
@@ -43,21 +44,7 @@ def build_polygon(points, edge_names, size, graded=None):
     geo.synchronize()
     if graded:
         i, radius, coarse = graded
-        field = gmsh.model.mesh.field
-        distance = field.add("Distance")
-        try:
-            field.setNumbers(distance, "PointsList", [tags[i]])
-        except Exception:  # gmsh < 4.10 calls it NodesList
-            field.setNumbers(distance, "NodesList", [tags[i]])
-        threshold = field.add("Threshold")
-        field.setNumber(threshold, "InField", distance)
-        for name, value in (("SizeMin", size), ("SizeMax", coarse), ("DistMin", radius),
-                            ("DistMax", 10 * radius)):
-            field.setNumber(threshold, name, value)
-        field.setAsBackgroundMesh(threshold)
-        for option in ("MeshSizeExtendFromBoundary", "MeshSizeFromPoints",
-                       "MeshSizeFromCurvature"):
-            gmsh.option.setNumber(f"Mesh.{option}", 0)
+        grade([tags[i]], size, radius, coarse)
     names = sorted(set(edge_names))
     for tag, name in enumerate(names, start=1):
         members = [line for line, n in zip(lines, edge_names) if n == name]
