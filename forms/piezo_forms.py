@@ -305,20 +305,25 @@ def obstacle_penetration(u, d, n_o):
     return -(d + ufl.dot(u, n_o))
 
 
-def normal_stress(s, n, kin=CARTESIAN):
-    """n . sigma n of a Voigt stress s along an in-plane unit vector n."""
+def contact_normal_stress(s, nu, n_o, kin=CARTESIAN):
+    """sigma_n = -(sigma nu) . n_o of a Voigt stress s: the traction on the
+    body's surface (outward normal nu) along the obstacle's normal n_o,
+    negative in compression. Frictionless contact along n_o is sigma nu =
+    lambda n_o, so sigma_n = -lambda also where the surfaces are not
+    parallel (n_o != -nu: a curved obstacle or body)."""
     sigma = kin.in_plane(kin.tensor(s))
-    return ufl.dot(n, ufl.dot(sigma, n))
+    return -ufl.dot(ufl.dot(sigma, nu), n_o)
 
 
-def nitsche_gamma(x, mat, ob):
+def nitsche_gamma(x, mat, ob, data):
     """Nitsche's parameter gamma_0 E / h (Pa/m): the dimensionless gamma_0 of
-    the config, E the largest diagonal modulus of the region's material, h
+    the config, E the largest diagonal entry of the step's tangent moduli
+    B + A / k (the viscous part counts: with a short step it dominates), h
     the diameter of the cell of the facet."""
-    Bv = mat["Bv"]
-    E = Bv[0, 0]
-    for i in range(1, Bv.ufl_shape[0]):
-        E = ufl.max_value(E, Bv[i, i])
+    moduli = mat["Bv"] + mat["Av"] / data["k"]
+    E = moduli[0, 0]
+    for i in range(1, moduli.ufl_shape[0]):
+        E = ufl.max_value(E, moduli[i, i])
     return ob["gamma_N"] * E / ufl.CellDiameter(x.ufl_domain())
 
 
@@ -328,7 +333,8 @@ class Obstacle:
     region's material; Nitsche's terms need the region's stress).
 
     Normal compliance: the pressure is lambda = law(r, c_p). Nitsche (Chouly &
-    Hild 2013; Chouly, Hild & Renard 2015), with P = sigma_n(u) - gamma r the
+    Hild 2013; Chouly, Hild & Renard 2015), with sigma_n = -(sigma nu).n_o
+    (contact_normal_stress) and P = sigma_n(u) - gamma r the
     Signorini condition reads sigma_n = min(P, 0), i.e. lambda = -sigma_n =
     max(gamma r - sigma_n(u), 0), and the residual gets
       int lambda (-w.n_o) ds - theta/gamma int (sigma_n(u) + lambda) sigma_n'(w) ds,
@@ -344,11 +350,11 @@ class Obstacle:
         self.d, self.n_o = obstacle_geometry(x.ufl_domain(), ob, nu)
         self.r = obstacle_penetration(self.u, self.d, self.n_o)
         self.nitsche = ufl.gt(ob["nitsche"], 0.5)
-        if mat is not None:
-            self.gamma = nitsche_gamma(x, mat, ob)
+        if mat is not None:  # on facets (nu): Nitsche's terms
+            self.gamma = nitsche_gamma(x, mat, ob, data)
             s = stress_voigt(self.u, velocity(self.u, u_prev, data), self.phi, mat, kin)
-            self.sigma_n = normal_stress(s, self.n_o, kin)
-        self.law = law
+            self.sigma_n = contact_normal_stress(s, nu, self.n_o, kin)
+        self.law, self.nu = law, nu
 
     def pressure(self):
         """lambda >= 0, the obstacle's pressure on the body."""
@@ -363,7 +369,7 @@ class Obstacle:
         (elastic plus viscous, B + A / k)."""
         s = ufl.dot(self.mat["Bv"], self.kin.strain(w)) \
             + ufl.dot(self.mat["Av"], self.kin.strain(w)) / self.data["k"]
-        return normal_stress(s, self.n_o, self.kin)
+        return contact_normal_stress(s, self.nu, self.n_o, self.kin)
 
     def residual(self, w, ds):
         F = -self.pressure() * ufl.dot(w, self.n_o) * ds

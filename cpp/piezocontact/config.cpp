@@ -1240,8 +1240,12 @@ ModelSpec model_spec(const json& cfg)
   {
     if (paper_foundation(cfg, bc))
       spec.contact.push_back(name);
-    else if (contact_block(cfg, bc))
+    else if (const json* block = contact_block(cfg, bc))
+    {
       spec.obstacles.push_back(name);
+      if (block->contains("obstacle"))
+        spec.with_obstacle.push_back(name);
+    }
     if (bc.contains("potential") or bc.contains("floating"))
       spec.electrodes.push_back(name);
     auto& keys = spec.boundary_keys[name];

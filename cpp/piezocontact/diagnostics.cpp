@@ -112,11 +112,10 @@ std::array<double, 3> outward_normal(const std::vector<const double*>& v, const 
 }
 } // namespace
 
-ContactGeometry::ContactGeometry(const Problem& problem)
+ContactGeometry::ContactGeometry(const Problem& problem, std::span<const std::int32_t> facets)
 {
   const auto& mesh = *problem.mesh;
   const int tdim = compat::topology(mesh).dim();
-  const auto& facets = problem.model.contact_facets;
   // (0.9's entities_to_geometry needs both directions)
   compat::topology_mutable(mesh).create_connectivity(tdim - 1, tdim);
   compat::topology_mutable(mesh).create_connectivity(tdim, tdim - 1);
@@ -147,8 +146,9 @@ ContactGeometry::ContactGeometry(const Problem& problem)
   }
 }
 
-std::optional<double> ContactGeometry::max_normal_gap(const Problem& problem,
-                                                      double gap) const
+std::optional<double>
+ContactGeometry::max_normal_gap(const Problem& problem, double gap,
+                                const dolfinx::fem::Function<double>* gap_field) const
 {
   double local = -std::numeric_limits<double>::infinity();
   if (!_cells.empty())
@@ -157,8 +157,8 @@ std::optional<double> ContactGeometry::max_normal_gap(const Problem& problem,
     std::vector<double> u(d * m), g(m, 0.0);
     problem.u->eval(_points, {m, 3}, _cells, u, {m, d});
     // a gap given by an expression: its field, the Constant being zero
-    if (auto field = problem.model.data_fields.find("g"); field != problem.model.data_fields.end())
-      field->second->eval(_points, {m, 3}, _cells, g, {m, 1});
+    if (gap_field)
+      gap_field->eval(_points, {m, 3}, _cells, g, {m, 1});
     for (std::size_t j = 0; j < m; ++j)
     {
       double un = 0.0;
@@ -220,6 +220,21 @@ std::vector<double> contact_force(const Problem& problem)
   return f;
 }
 
+namespace
+{
+/// Whether a contact boundary's data give an obstacle's geometry (a plane's
+/// normal, a sphere's or a cylinder's radius), or the paper's foundation
+bool has_geometry(const ConstantMap& data)
+{
+  const auto nonzero = [&](const char* name)
+  {
+    const auto& v = data.at(name)->value;
+    return std::any_of(v.begin(), v.end(), [](double x) { return x != 0.0; });
+  };
+  return nonzero("plane_N") or nonzero("sphere_R") or nonzero("cylinder_R");
+}
+} // namespace
+
 ObstaclePenetration::ObstaclePenetration(const Problem& problem)
 {
   if (problem.model.obstacles.empty())
@@ -233,6 +248,12 @@ ObstaclePenetration::ObstaclePenetration(const Problem& problem)
   _r = std::make_shared<fem::Function<double>>(
       std::make_shared<compat::FunctionSpace>(std::move(V)));
   for (const auto& [name, contact] : problem.model.obstacles)
+  {
+    if (!has_geometry(problem.model.loads.at(name)))
+    {
+      _offset.emplace(name, ContactGeometry(problem, problem.model.mesh.boundary_facets(name)));
+      continue;
+    }
     for (const auto& p : contact.penetration)
     {
       Part part{{}, {}, p.expression};
@@ -240,17 +261,27 @@ ObstaclePenetration::ObstaclePenetration(const Problem& problem)
         part.cells.push_back(f_to_c->links(f)[0]);
       std::sort(part.cells.begin(), part.cells.end());
       part.cells.erase(std::unique(part.cells.begin(), part.cells.end()), part.cells.end());
-      const std::int32_t owned = _r->function_space()->dofmap()->index_map->size_local();
-      for (auto dof : compat::locate_nodes(*_r->function_space(), tdim - 1, p.facets))
-        if (dof < owned) // each node once over the ranks
-          part.dofs.push_back(dof);
+      // every node of the facets here, ghosts too: a node's owner may not
+      // hold a facet of the boundary (a maximum may count a node twice)
+      part.dofs = compat::locate_nodes(*_r->function_space(), tdim - 1, p.facets);
       _parts[name].push_back(std::move(part));
     }
+  }
 }
 
 std::optional<double> ObstaclePenetration::largest(const Problem& problem,
                                                    const std::string& boundary) const
 {
+  if (auto offset = _offset.find(boundary); offset != _offset.end())
+  {
+    const auto fields = problem.model.load_data_fields.find(boundary);
+    const fem::Function<double>* field = nullptr;
+    if (fields != problem.model.load_data_fields.end())
+      if (auto g = fields->second.find("g_o"); g != fields->second.end())
+        field = g->second.get();
+    return offset->second.max_normal_gap(
+        problem, problem.model.loads.at(boundary).at("g_o")->value[0], field);
+  }
   double local = -std::numeric_limits<double>::infinity();
   if (auto parts = _parts.find(boundary); parts != _parts.end())
     for (const auto& part : parts->second)

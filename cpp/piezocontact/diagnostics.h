@@ -30,11 +30,13 @@ private:
 class ContactGeometry
 {
 public:
-  explicit ContactGeometry(const Problem& problem);
-  /// Largest u.nu - g on Gamma_C (g: the Constant gap plus the model's
-  /// field of it, when the config gives it by an expression); empty
-  /// without a contact boundary
-  std::optional<double> max_normal_gap(const Problem& problem, double gap) const;
+  /// On some facets (local indices)
+  ContactGeometry(const Problem& problem, std::span<const std::int32_t> facets);
+  /// Largest u.nu - g on the facets (g: the Constant gap plus a field of
+  /// it, when the config gives it by an expression); empty without facets
+  /// on any rank. Collective.
+  std::optional<double> max_normal_gap(const Problem& problem, double gap,
+                                       const dolfinx::fem::Function<double>* gap_field) const;
 
 private:
   std::vector<double> _points;  // (n, 3)
@@ -60,6 +62,9 @@ private:
     std::shared_ptr<const dolfinx::fem::Expression<double>> expression;
   };
   std::map<std::string, std::vector<Part>> _parts;
+  /// The boundaries whose block has no obstacle: the paper's foundation
+  /// offset by their own gap, measured along the facets' normals
+  std::map<std::string, ContactGeometry> _offset;
   std::shared_ptr<dolfinx::fem::Function<double>> _r;
 };
 

@@ -108,6 +108,9 @@ struct ModelSpec
   /// The contact boundaries with an obstacle or a contact block of their
   /// own (config.h paper_foundation: the others are `contact`)
   std::vector<std::string> obstacles;
+  /// Those of `obstacles` whose block gives an obstacle (the others are the
+  /// paper's foundation with a block of their own)
+  std::vector<std::string> with_obstacle;
   /// Each named boundary of the config -> the keys its entry sets (a term
   /// with a `where` key is instantiated on the boundaries that set it)
   std::map<std::string, std::vector<std::string>> boundary_keys;

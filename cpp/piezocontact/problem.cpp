@@ -483,12 +483,18 @@ double Problem::update_contact_pressure()
     load.push_back(model.contact_pressure_load);
     area.push_back(model.contact_nodal_area);
   }
+  if (model.obstacles.empty())
+    return lumped_pressure(load, area, contact_pressure->x()->mutable_array());
+  // the paper's foundation's measure alone; the field of every contact
+  std::vector<double> scratch(contact_pressure->x()->array().size(), 0.0);
+  const double foundation = lumped_pressure(load, area, scratch);
   for (const auto& [_, o] : model.obstacles)
   {
     load.insert(load.end(), o.pressure_load.begin(), o.pressure_load.end());
     area.insert(area.end(), o.nodal_area.begin(), o.nodal_area.end());
   }
-  return lumped_pressure(load, area, contact_pressure->x()->mutable_array());
+  lumped_pressure(load, area, contact_pressure->x()->mutable_array());
+  return foundation;
 }
 
 double Problem::obstacle_max_pressure(const std::string& boundary) const

@@ -116,8 +116,10 @@ public:
 
   /// The lumped contact pressure on the P1 space P (the ratio of the model's
   /// contact_pressure_load and contact_nodal_area at each vertex of Gamma_C,
-  /// 0 elsewhere) at the current x, and the measure of Gamma_C where it is
-  /// positive (the contact length in 2D, area in 3D); 0 without the forms.
+  /// and of each obstacle's, 0 elsewhere) at the current x, and the measure
+  /// of the paper's foundation where it is positive (the contact length in
+  /// 2D, area in 3D; the obstacles measure theirs at Gauss points:
+  /// diagnostics.h obstacle_contact_measure); 0 without the forms.
   /// Collective.
   double update_contact_pressure();
 

@@ -74,7 +74,8 @@ Record::Record(Problem& problem, const RunSettings& settings, std::filesystem::p
     : _problem(problem), _rtol(settings.newton.rtol), _dir(std::move(dir)), _progress(progress),
       _observer(std::move(observer)), _label(summary.value("solver", "cpp")),
       _probes(problem, settings.probes, summary.value("config_file", "config")),
-      _contact(problem), _obstacles(problem), _state_file(problem)
+      _contact(problem, problem.model.contact_facets), _obstacles(problem),
+      _state_file(problem)
 {
   int size;
   MPI_Comm_size(problem.comm, &size);
@@ -218,7 +219,10 @@ json Record::accept(StepState state, const SolveReport& report, const StateViews
   step["contact_force"] = contact_force(problem);
   if (!problem.model.spring_force.empty())
     step["spring_force"] = spring_forces(problem);
-  auto gap = _contact.max_normal_gap(problem, problem.model.constants.at("g")->value[0]);
+  const auto g = problem.model.data_fields.find("g"); // a gap given by expressions
+  auto gap = _contact.max_normal_gap(problem, problem.model.constants.at("g")->value[0],
+                                     g == problem.model.data_fields.end() ? nullptr
+                                                                          : g->second.get());
   const std::string measure = problem.dim() == 2 ? "contact_length" : "contact_area";
   if (!problem.model.obstacles.empty())
     step["contacts"] = json::object();
@@ -233,7 +237,9 @@ json Record::accept(StepState state, const SolveReport& report, const StateViews
                               {"max_penetration", r ? json(*r) : json(nullptr)}};
   }
   step["max_penetration"] = gap ? json(*gap) : json(nullptr);
-  const double in_contact = problem.update_contact_pressure();
+  double in_contact = problem.update_contact_pressure();
+  for (const auto& [name, _] : problem.model.obstacles)
+    in_contact += step["contacts"][name][measure].get<double>();
   if (problem.contact_pressure)
     step[measure] = in_contact;
   // the unconstrained residual at x_n: reactions, balance, electrode charges

@@ -130,7 +130,7 @@ def _mark(msh, dim, entities):
 
 
 Spec = collections.namedtuple("Spec", "manufactured contact electrodes boundary_keys degrees "
-                              "axisymmetric expression_keys obstacles")
+                              "axisymmetric expression_keys obstacles with_obstacle")
 
 
 class JitModel:
@@ -164,7 +164,7 @@ class JitModel:
         self.spec = Spec(spec.manufactured, list(spec.contact), list(spec.electrodes),
                          {b: list(keys) for b, keys in spec.boundary_keys.items()},
                          tuple(spec.degrees), spec.axisymmetric, list(spec.expression_keys),
-                         list(spec.obstacles))
+                         list(spec.obstacles), list(spec.with_obstacle))
         self.mesh = msh = python_mesh(named)
         cell_name = compat.cell_name(msh.topology)
         _, mixed, pressure = elements(cell_name, *spec.degrees)
@@ -196,7 +196,7 @@ class JitModel:
             for name, c in self._instances(term):
                 self._place(term, name, c)
         self._hook(extra_residual)
-        self._whole(extra_residual)
+        self._extra_residual, self._whole_forms = extra_residual, None
 
     # -- the pieces
     def _dx_on(self, cells):
@@ -267,7 +267,7 @@ class JitModel:
     def _distance(self, key, d):
         """The hook's signed distance to a boundary's obstacle, checked."""
         boundary = key.split(".")[1]
-        if boundary not in self.spec.obstacles:
+        if boundary not in self.spec.with_obstacle:
             raise ValueError(
                 f"data: {key}: the boundary has no obstacle in the config (give it \"contact\": "
                 "{\"obstacle\": ...} with the method: the distance replaces the obstacle's "
@@ -346,10 +346,27 @@ class JitModel:
         if not ufl.algorithms.expand_derivatives(J).empty():
             self._jacobian(J, terms.depends_on_state(J, self.context))
 
+    @property
+    def F_whole(self):
+        """The residual as one form (the reference engine's: _whole)."""
+        return self._whole_pair()[0]
+
+    @property
+    def J_whole(self):
+        """Its Jacobian, one form."""
+        return self._whole_pair()[1]
+
+    def _whole_pair(self):
+        if self._whole_forms is None:
+            self._whole_forms = self._whole(self._extra_residual)
+        return self._whole_forms
+
     def _whole(self, extra_residual):
         """The residual and its Jacobian as one form each, on the mesh's own
         cell and facet tags: the reference engine's view of the model (the
-        same terms, summed by UFL rather than by the core)."""
+        same terms, summed by UFL rather than by the core). Built on demand:
+        only the reference engine needs it (it has no pieces of a boundary
+        and a region: _material_of)."""
         named, msh, c = self.named, self.mesh, self.context
         dx = ufl.Measure("dx", domain=msh, subdomain_data=compat.meshtags(named.cell_tags))
         ds = ufl.Measure("ds", domain=msh, subdomain_data=compat.meshtags(named.facet_tags))
@@ -382,8 +399,7 @@ class JitModel:
             u, phi = ufl.split(self.x)
             w, psi = ufl.split(c.y)
             F = compat.one_subdomain_data(F + extra_residual(u, phi, w, psi, self._hook_data()))
-        self.F_whole = fem.form(F)
-        self.J_whole = fem.form(pf.jacobian(F, self.x, self.dx_trial))
+        return fem.form(F), fem.form(pf.jacobian(F, self.x, self.dx_trial))
 
     def _material_of(self, boundary):
         """The material of the cells a boundary's facets bound, in the whole

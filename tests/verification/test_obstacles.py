@@ -181,15 +181,21 @@ def squeezed_config(contact, depth):
     }
 
 
-@pytest.mark.parametrize("contact", [NITSCHE, {"c_p": 1e12}], ids=["nitsche", "penalty"])
-def test_a_block_squeezed_between_two_obstacles(tmp_path, contact):
+@pytest.mark.parametrize("contact, below", [(NITSCHE, "plane"), ({"c_p": 1e12}, "plane"),
+                                            (NITSCHE, "foundation"), ({"c_p": 1e12}, "foundation")])
+def test_a_block_squeezed_between_two_obstacles(tmp_path, contact, below):
     """Each boundary its own obstacle; exact: the uniform stress
     sigma_yy = -E* (delta - 2 r) of a unit height, r = 0 for Nitsche (the
     Signorini limit: no penetration at all) and r = E* delta / (c_p + 2 E*)
-    for the penalty; P1 holds the linear fields exactly."""
+    for the penalty; P1 holds the linear fields exactly. Below, the plane
+    y = 0 or the paper's foundation in a block of its own (gap 0: the same
+    surface, its penetration measured along the facets' normals)."""
     depth = 1e-3
     cfg = tmp_path / "squeezed.json"
-    cfg.write_text(json.dumps(squeezed_config(contact, depth)))
+    squeezed = squeezed_config(contact, depth)
+    if below == "foundation":
+        squeezed["boundaries"]["bottom"]["contact"] = {"gap": 0.0, **contact}
+    cfg.write_text(json.dumps(squeezed))
     summary, _ = run_solver("cpp", tmp_path / "out", config=cfg)
     for step in summary["steps"]:
         delta = depth * step["t"]
