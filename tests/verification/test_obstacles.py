@@ -85,8 +85,11 @@ NITSCHE = {"method": "nitsche"}
 @pytest.mark.parametrize("formulation, depth", [("plane_strain", 28e-6),
                                                 ("axisymmetric", 12.5e-6)])
 def test_hertz_nitsche(tmp_path, formulation, depth):
+    """Hertz at 40 um under the indenter (a / h ~ 7 to 11): a and p0 within
+    1 % (measured +0.45/-0.33 % and -0.82/-0.08 %; the tables of
+    benchmarks/hertz.py refine to 10 um)."""
     cfg = tmp_path / "hertz.json"
-    cfg.write_text(json.dumps(hertz_config(formulation, depth, NITSCHE)))
+    cfg.write_text(json.dumps(hertz_config(formulation, depth, NITSCHE, size=0.04e-3)))
     summary, _ = run_solver("cpp", tmp_path / "out", config=cfg)
     P, a, p0 = measured(formulation, summary)
     a_h, p0_h = hertz(formulation, P)
@@ -234,7 +237,7 @@ def hertz_3d_config(msh, depth, contact, steps=1):
         "output": {"xdmf": False, "nodal": "none"},
     }
 
-
+@pytest.mark.slow  # 100 s: a campaign (Debian 12)
 def test_hertz_sphere_in_3d(tmp_path):
     """The sphere on a quarter model in 3D, Nitsche at P2, driven in 4 steps:
     a and p0 against Hertz for each step's force, and the force against
