@@ -86,6 +86,7 @@ def declare(cell_name, data, degrees=(1, 1), fields=False):
     objects = {"mesh": mesh, "W": W,
                "x": ufl.Coefficient(W),       # (u_n, phi_n), the unknown of the step
                "x_prev": ufl.Coefficient(W),  # (u_{n-1}, phi_{n-1})
+               "x_dot": ufl.Coefficient(W),   # the velocity held in a linearisation
                "P": ufl.FunctionSpace(mesh, pressure)}
     constants = {name: ufl.Constant(mesh, shape=datum.shape) for name, datum in data.items()}
     fields = {name: ufl.Coefficient(ufl.FunctionSpace(
@@ -108,7 +109,9 @@ def compiled(cell_name, variant=None, degrees=(1, 1), axisymmetric=False, fields
     {name: (expression, reference points)}, every term of the catalogue the
     variant defines, on its piece (dx(1), ds(1): the core marks the piece
     with 1), and for the model the Jacobian of each residual term (its
-    derivative), with {Jacobian's name: "J" or "J_state"}. `axisymmetric`:
+    derivative), with {derived form's name: role}: "J" or "J_state" for
+    the Jacobians, and the forms of a linearisation: "K" (stiffness, only
+    where it is not the Jacobian), "C" (damping), "M" (mass). `axisymmetric`:
     the axisymmetric formulation of a triangle mesh; `fields`: the data
     that may vary in space carry their fields (a run whose config gives
     some by expressions; without, the forms are the Constants' alone, and
@@ -137,10 +140,18 @@ def compiled(cell_name, variant=None, degrees=(1, 1), axisymmetric=False, fields
         if t.expression:
             expressions[t.name] = (t.build(ct), points(t.points, cell_name, degrees))
             continue
+        if t.role == "M":
+            forms[t.name] = terms.mass(t, ct, dx_trial)
+            jacobians[t.name] = "M"
+            continue
         forms[t.name] = t.build(ct)
         if t.role == "F" and variant is None and (J := terms.jacobian(t, ct, dx_trial)):
             forms[terms.jacobian_name(t)] = J
             jacobians[terms.jacobian_name(t)] = "J_state" if terms.depends_on_state(J, ct) else "J"
+            for role, form in terms.linearised(t, ct, objects["x_dot"], dx_trial).items():
+                if form is not None:
+                    forms[role + t.name[1:]] = form
+                    jacobians[role + t.name[1:]] = role
     return objects, constants, forms, expressions, jacobians
 
 

@@ -146,9 +146,9 @@ def contact_loads(y, ds, data, law=pf.p, kin=pf.CARTESIAN):
     return pf.contact_term(u, w, ufl.FacetNormal(y.ufl_domain()), dsq, data, law)
 
 
-def region_residual(x, x_prev, y, dx, mat, data, kin=pf.CARTESIAN):
+def region_residual(x, u_dot, y, dx, mat, data, kin=pf.CARTESIAN):
     """piezo_forms' bulk term with the body loads of the exact solution."""
-    return (pf.region_residual(x, x_prev, y, dx, mat, data, kin)
+    return (pf.region_residual(x, u_dot, y, dx, mat, data, kin)
             - body_loads(y, dx, mat, data, kin))
 
 

@@ -190,18 +190,27 @@ def contact_pressure(u, n, data, law=p):
     return law(gap_function(u, n, data), data["c_p"])
 
 
-def region_residual(x, x_prev, y, dx, mat, data, kin=CARTESIAN):
+def region_residual(x, u_dot, y, dx, mat, data, kin=CARTESIAN):
     """The bulk of (3.3)-(3.4) on one region (dx: its cells) with its
     material: viscous + elastic + piezoelectric stress against the strain of
     the test function, permittivity - coupling against grad psi (with the
-    right-hand side of (2.19) as the paper writes it), minus the body loads."""
+    right-hand side of (2.19) as the paper writes it), minus the body loads;
+    u_dot the velocity (velocity(): backward Euler)."""
     u, phi = ufl.split(x)
-    u_prev, _ = ufl.split(x_prev)
     w, psi = ufl.split(y)
-    F = ufl.inner(stress_voigt(u, velocity(u, u_prev, data), phi, mat, kin), kin.strain(w)) * dx
+    F = ufl.inner(stress_voigt(u, u_dot, phi, mat, kin), kin.strain(w)) * dx
     F += ufl.inner(ufl.dot(mat["beta"], ufl.grad(phi)), ufl.grad(psi)) * dx
     F -= ufl.inner(ufl.dot(mat["e"], kin.strain(u)), ufl.grad(psi)) * dx
     return F - body_loads(y, dx, data)
+
+
+def inertia(x, y, dx, mat):
+    """int rho u.w on a region: its derivative in x is the mass matrix
+    M = int rho du.w (nothing on phi: the electric field is
+    quasi-static, SPEC's dynamics)."""
+    u, _ = ufl.split(x)
+    w, _ = ufl.split(y)
+    return mat["rho"] * ufl.inner(u, w) * dx
 
 
 def body_loads(y, dx, data):
@@ -343,16 +352,15 @@ class Obstacle:
     block of the Jacobian symmetric, the second term vanishes at the exact
     solution (consistency)."""
 
-    def __init__(self, x, x_prev, ob, mat, data, law=p, kin=CARTESIAN, nu=None):
+    def __init__(self, x, u_dot, ob, mat, data, law=p, kin=CARTESIAN, nu=None):
         self.u, self.phi = ufl.split(x)
-        u_prev, _ = ufl.split(x_prev)
         self.ob, self.mat, self.kin, self.data = ob, mat, kin, data
         self.d, self.n_o = obstacle_geometry(x.ufl_domain(), ob, nu)
         self.r = obstacle_penetration(self.u, self.d, self.n_o)
         self.nitsche = ufl.gt(ob["nitsche"], 0.5)
         if mat is not None:  # on facets (nu): Nitsche's terms
             self.gamma = nitsche_gamma(x, mat, ob, data)
-            s = stress_voigt(self.u, velocity(self.u, u_prev, data), self.phi, mat, kin)
+            s = stress_voigt(self.u, u_dot, self.phi, mat, kin)
             self.sigma_n = contact_normal_stress(s, nu, self.n_o, kin)
         self.law, self.nu = law, nu
 
@@ -378,28 +386,28 @@ class Obstacle:
         return F + ufl.conditional(self.nitsche, consistency, 0) * ds
 
 
-def obstacle(x, x_prev, ds, ob, mat, data, law=p, kin=CARTESIAN):
+def obstacle(x, u_dot, ds, ob, mat, data, law=p, kin=CARTESIAN):
     """The contact with the obstacle of the facets of ds."""
-    return Obstacle(x, x_prev, ob, mat, data, law, kin, ufl.FacetNormal(x.ufl_domain()))
+    return Obstacle(x, u_dot, ob, mat, data, law, kin, ufl.FacetNormal(x.ufl_domain()))
 
 
-def obstacle_residual(x, x_prev, y, ds, ob, mat, data, law=p, kin=CARTESIAN):
+def obstacle_residual(x, u_dot, y, ds, ob, mat, data, law=p, kin=CARTESIAN):
     """The obstacle's term of the residual on the facets of ds."""
     w, _ = ufl.split(y)
-    return obstacle(x, x_prev, ds, ob, mat, data, law, kin).residual(
+    return obstacle(x, u_dot, ds, ob, mat, data, law, kin).residual(
         w, ds(degree=contact_quadrature_degree(x)))
 
 
-def obstacle_force(x, x_prev, ds, ob, mat, data, i, law=p, kin=CARTESIAN):
+def obstacle_force(x, u_dot, ds, ob, mat, data, i, law=p, kin=CARTESIAN):
     """Component i of the obstacle's resultant force on the body,
     int lambda n_o ds."""
-    o = obstacle(x, x_prev, ds, ob, mat, data, law, kin)
+    o = obstacle(x, u_dot, ds, ob, mat, data, law, kin)
     return o.pressure() * o.n_o[i] * ds(degree=contact_quadrature_degree(x))
 
 
-def obstacle_pressure_moments(x, x_prev, q, ds, ob, mat, data, law=p, kin=CARTESIAN):
+def obstacle_pressure_moments(x, u_dot, q, ds, ob, mat, data, law=p, kin=CARTESIAN):
     """int lambda q ds and int q ds (see contact_pressure_moments)."""
-    o = obstacle(x, x_prev, ds, ob, mat, data, law, kin)
+    o = obstacle(x, u_dot, ds, ob, mat, data, law, kin)
     return o.pressure() * q * ds(degree=contact_quadrature_degree(x)), q * ds
 
 
@@ -409,10 +417,10 @@ def obstacle_pressure_moments(x, x_prev, q, ds, ob, mat, data, law=p, kin=CARTES
 CONTACT_MEASURE_DEGREE = 8
 
 
-def obstacle_contact_measure(x, x_prev, ds, ob, mat, data, law=p, kin=CARTESIAN):
+def obstacle_contact_measure(x, u_dot, ds, ob, mat, data, law=p, kin=CARTESIAN):
     """The measure of the facets of ds where lambda > 0 (the contact
     length in 2D, area in 3D, per revolution in axisymmetry)."""
-    o = obstacle(x, x_prev, ds, ob, mat, data, law, kin)
+    o = obstacle(x, u_dot, ds, ob, mat, data, law, kin)
     return ufl.conditional(ufl.gt(o.pressure(), 0), 1, 0) * ds(degree=CONTACT_MEASURE_DEGREE)
 
 
@@ -493,6 +501,7 @@ def material_data(d, axisymmetric=False):
         "Av": Datum((m, m), "viscosity"),        # viscosity tensor (Pa s)
         "e": Datum((d, m), "piezoelectric"),     # piezoelectric tensor (C/m^2), rows: D components
         "beta": Datum((d, d), "permittivity"),   # permittivity (C^2/(N m^2)), positive definite
+        "rho": Datum((), "density"),             # mass density (kg/m^3): dynamic analyses
     }
 
 

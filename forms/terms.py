@@ -8,7 +8,9 @@ one loop over this list; none of them names a term. Adding a term is its
 UFL in piezo_forms.py and one entry here.
 
 A term is built from a context `c` (see `Context`): the unknown c.x, the
-previous state c.x_prev, the test function c.y, the shared Constants c.data,
+previous state c.x_prev, the velocity c.u_dot (backward Euler from them, or
+a coefficient of its own in a linearisation), the test function c.y, the
+shared Constants c.data,
 the piece's material c.mat (region and electrode pieces) or loads c.load
 (boundary pieces), the contact law c.law, and c.m, the measure of the piece
 (dx or ds restricted to it).
@@ -27,11 +29,16 @@ Pieces (what one instance of a term is integrated over, and its Constants):
   exterior   every exterior facet                shared (+ the one material)
   mesh       every cell                          shared
 Roles of the forms: "F" residual (summed), "L" applied loads (summed; they
-scale the force balance), "output" (a functional, a linear form or an
+scale the force balance), "M" inertia (its derivative is the mass matrix of
+dynamic analyses), "output" (a functional, a linear form or an
 expression the core reports: `slot` names the Model member it fills). The
 Jacobian is not listed: it is the derivative of each residual term
 (`jacobian`), "J" when it is constant in a run, "J_state" when it depends
 on the state (the core compares those to keep an LU factorisation).
+Neither are the forms of a linearisation about a state (`linearised`):
+the stiffness "K", the derivative of each residual term with the velocity
+held, and the damping "C", its derivative in the velocity (SPEC's
+dynamics: K without the backward-Euler term, C = A from the viscosity).
 
 Variants: a manufactured-solution run replaces some terms (the same
 physics with the exact solution's loads) and adds others; its Jacobian is
@@ -56,7 +63,7 @@ class Term:
 
     def __init__(self, name, piece, role, build, slot=None, where=None, points=None,
                  variant=None, space="W"):
-        assert piece in PIECES and role in ("F", "L", "output") and space in ("W", "P")
+        assert piece in PIECES and role in ("F", "L", "M", "output") and space in ("W", "P")
         self.name, self.piece, self.role, self.build = name, piece, role, build
         self.slot, self.where, self.points, self.variant = slot, where, points, variant
         self.space = space
@@ -72,15 +79,30 @@ class Context:
     measure of a piece carries."""
 
     def __init__(self, x, x_prev, y, data, m=None, mat=None, load=None, law=pf.p, q=None,
-                 kin=pf.CARTESIAN):
+                 kin=pf.CARTESIAN, x_dot=None):
         self.x, self.x_prev, self.y, self.data = x, x_prev, y, data
         self.m, self.mat, self.load, self.law, self.q = m, mat, load, law, q
-        self.kin = kin
+        self.kin, self.x_dot = kin, x_dot
 
     def on(self, m, mat=None, load=None):
         """The same context on another piece (m: its unweighted measure)."""
         return Context(self.x, self.x_prev, self.y, self.data, self.kin.measure(m), mat, load,
-                       self.law, self.q, self.kin)
+                       self.law, self.q, self.kin, self.x_dot)
+
+    def linearised(self, x_dot):
+        """The same context with the velocity a coefficient of its own,
+        x_dot = (u_dot, phi_dot) (a linearisation: `linearised`)."""
+        return Context(self.x, self.x_prev, self.y, self.data, self.m, self.mat, self.load,
+                       self.law, self.q, self.kin, x_dot)
+
+    @property
+    def u_dot(self):
+        """The velocity the terms see: backward Euler, (u - u_prev) / k, or
+        the linearisation's own."""
+        if self.x_dot is not None:
+            return ufl.split(self.x_dot)[0]
+        u, _, u_prev = self.fields
+        return pf.velocity(u, u_prev, self.data)
 
     @property
     def fields(self):
@@ -95,12 +117,12 @@ def _contact_force(i):
 
 
 def _obstacle_force(i):
-    return lambda c: pf.obstacle_force(c.x, c.x_prev, c.m, c.load, c.mat, c.data, i, c.law,
+    return lambda c: pf.obstacle_force(c.x, c.u_dot, c.m, c.load, c.mat, c.data, i, c.law,
                                        c.kin)
 
 
 def _obstacle_moment(k):
-    return lambda c: pf.obstacle_pressure_moments(c.x, c.x_prev, c.q, c.m, c.load, c.mat, c.data,
+    return lambda c: pf.obstacle_pressure_moments(c.x, c.u_dot, c.q, c.m, c.load, c.mat, c.data,
                                                   c.law, c.kin)[k]
 
 
@@ -111,8 +133,8 @@ def _spring_force(i):
 def model(d):
     """The terms of the model in d dimensions, in the order they are summed."""
     def stress(c):
-        u, phi, u_prev = c.fields
-        return pf.stress_voigt(u, pf.velocity(u, u_prev, c.data), phi, c.mat, c.kin)
+        u, phi, _ = c.fields
+        return pf.stress_voigt(u, c.u_dot, phi, c.mat, c.kin)
 
     def electric_displacement(c):
         u, phi, _ = c.fields
@@ -120,7 +142,8 @@ def model(d):
 
     return [
         Term("F_region", "region", "F",
-             lambda c: pf.region_residual(c.x, c.x_prev, c.y, c.m, c.mat, c.data, c.kin)),
+             lambda c: pf.region_residual(c.x, c.u_dot, c.y, c.m, c.mat, c.data, c.kin)),
+        Term("M_region", "region", "M", lambda c: pf.inertia(c.x, c.y, c.m, c.mat)),
         Term("L_region", "region", "L", lambda c: pf.body_loads(c.y, c.m, c.data)),
         Term("F_boundary", "boundary", "F", lambda c: -pf.boundary_loads(c.y, c.m, c.load)),
         Term("L_boundary", "boundary", "L", lambda c: pf.boundary_loads(c.y, c.m, c.load)),
@@ -145,7 +168,7 @@ def model(d):
                slot="spring_force", where="spring") for i, axis in enumerate("xyz"[:d])],
         # contact boundaries with an obstacle or a block of their own
         Term("F_obstacle", "obstacle", "F",
-             lambda c: pf.obstacle_residual(c.x, c.x_prev, c.y, c.m, c.load, c.mat, c.data,
+             lambda c: pf.obstacle_residual(c.x, c.u_dot, c.y, c.m, c.load, c.mat, c.data,
                                             c.law, c.kin)),
         *[Term(f"obstacle_force_{axis}", "obstacle", "output", _obstacle_force(i),
                slot="obstacle_force") for i, axis in enumerate("xyz"[:d])],
@@ -154,7 +177,7 @@ def model(d):
         Term("obstacle_nodal_area", "obstacle", "output", _obstacle_moment(1),
              slot="obstacle_nodal_area", space="P"),
         Term("obstacle_contact_measure", "obstacle", "output",
-             lambda c: pf.obstacle_contact_measure(c.x, c.x_prev, c.m, c.load, c.mat, c.data,
+             lambda c: pf.obstacle_contact_measure(c.x, c.u_dot, c.m, c.load, c.mat, c.data,
                                                    c.law, c.kin), slot="obstacle_contact_measure"),
         Term("obstacle_penetration", "obstacle", "output",
              lambda c: pf.obstacle_penetration_at(c.x, c.load), slot="obstacle_penetration",
@@ -179,7 +202,7 @@ def manufactured(d):
     contact facets, and the exact fields and errors."""
     variant = "manufactured"
     replaced = {
-        "F_region": lambda c: mms.region_residual(c.x, c.x_prev, c.y, c.m, c.mat, c.data, c.kin),
+        "F_region": lambda c: mms.region_residual(c.x, c.u_dot, c.y, c.m, c.mat, c.data, c.kin),
         "L_region": lambda c: (pf.body_loads(c.y, c.m, c.data)
                                + mms.body_loads(c.y, c.m, c.mat, c.data, c.kin)),
         "F_contact": lambda c: mms.contact_residual(c.x, c.y, c.m, c.data, c.law, c.kin),
@@ -241,3 +264,23 @@ def depends_on_state(J, c):
 def jacobian_name(term):
     assert term.name.startswith("F_"), f"a residual term's name starts with F_: {term.name}"
     return "J" + term.name[1:]
+
+
+def linearised(term, c, x_dot, dx_trial):
+    """The forms of a residual term linearised about a state, with the
+    velocity held (c.linearised(x_dot)): {"K": its stiffness, the
+    derivative in x, or None where it is the Jacobian's (the term has no
+    velocity), "C": its damping, the derivative in the velocity, or None
+    where that is zero}."""
+    build = getattr(term, "jacobian_of", term.build)
+    F = build(c.linearised(x_dot))
+    if x_dot not in F.coefficients():
+        return {"K": None, "C": None}
+    C = ufl.derivative(F, x_dot, dx_trial)
+    return {"K": ufl.derivative(F, c.x, dx_trial),
+            "C": None if ufl.algorithms.expand_derivatives(C).empty() else C}
+
+
+def mass(term, c, dx_trial):
+    """The mass matrix of an "M" term: its derivative in x."""
+    return ufl.derivative(term.build(c), c.x, dx_trial)

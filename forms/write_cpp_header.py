@@ -38,7 +38,9 @@ def files(degrees):
 
 def roles(d, axisymmetric, manufactured_run, fields, degrees):
     """(term, role, ffcx file, form name) in catalogue order, each Jacobian
-    after the residual term it is the derivative of."""
+    after the residual term it is the derivative of, then the term's
+    stiffness (its own kernel, or the Jacobian's where they are the same)
+    and damping."""
     jacobians = ep.compiled(CELL[d], degrees=degrees, axisymmetric=axisymmetric)[4]
     prefix = files(degrees)
     model = prefix["fields" if fields else None]
@@ -48,6 +50,10 @@ def roles(d, axisymmetric, manufactured_run, fields, degrees):
         if t.role == "F" and terms.jacobian_name(t) in jacobians:
             name = terms.jacobian_name(t)
             out.append((t, jacobians[name], model, name))
+            K, C = "K" + t.name[1:], "C" + t.name[1:]
+            out.append((t, "K", model, K if K in jacobians else name))
+            if C in jacobians:
+                out.append((t, "C", model, C))
     return out
 
 
@@ -136,8 +142,9 @@ namespace piezocontact::forms
 {{
 /// What one instance of a term is integrated over (forms/terms.py)
 enum class Piece {{ region, boundary, contact, electrode, exterior, mesh, obstacle }};
-/// Residual, applied loads, Jacobian (constant in a run, or not), output
-enum class Role {{ F, L, J, J_state, output }};
+/// Residual, applied loads, Jacobian (constant in a run, or not), the
+/// stiffness, damping and mass of a linearisation, output
+enum class Role {{ F, L, J, J_state, K, C, M, output }};
 /// The space of a form's arguments: x's, or the contact pressure's (P1)
 enum class Space {{ W, P }};
 

@@ -27,6 +27,10 @@ using PyModelFactory = std::function<Model(const NamedMesh&, const ModelSpec&)>;
 /// resume, progress) -> summary text
 using PyEngine = std::function<std::string(Problem*, const RunSettings&, const std::string&,
                                            const std::string&, bool, bool)>;
+/// A dynamic analysis in Python: (problem, settings, output dir, summary,
+/// source) -> summary
+using PyAnalysis = std::function<std::string(Problem*, const RunSettings&, const std::string&,
+                                             const std::string&, const std::string&)>;
 
 ModelFactory factory(const PyModelFactory& f)
 {
@@ -75,6 +79,24 @@ Engine engine(const std::optional<PyEngine>& e)
   };
 }
 
+Analysis analysis(const std::optional<PyAnalysis>& a)
+{
+  if (!a)
+    return nullptr;
+  return [a](Problem& problem, const RunSettings& settings, const std::filesystem::path& out,
+             json summary, const std::string& source)
+  {
+    try
+    {
+      return json::parse((*a)(&problem, settings, out.string(), summary.dump(), source));
+    }
+    catch (python_error& err)
+    {
+      rethrow(err);
+    }
+  };
+}
+
 void declare_model(py::module_& m)
 {
   class_<NamedMesh>(m, "NamedMesh",
@@ -106,6 +128,7 @@ void declare_model(py::module_& m)
       .def_rw("boundary_keys", &ModelSpec::boundary_keys)
       .def_rw("degrees", &ModelSpec::degrees)
       .def_rw("axisymmetric", &ModelSpec::axisymmetric)
+      .def_rw("linearised", &ModelSpec::linearised)
       .def_rw("expression_keys", &ModelSpec::expression_keys);
 
   class_<ConstantSource>(m, "ConstantSource",
@@ -148,6 +171,10 @@ void declare_model(py::module_& m)
       .def_rw("P", &Model::P)
       .def_rw("x", &Model::x)
       .def_rw("x_prev", &Model::x_prev)
+      .def_rw("x_dot", &Model::x_dot)
+      .def_rw("K", &Model::K)
+      .def_rw("C", &Model::C)
+      .def_rw("M", &Model::M)
       .def_rw("constants", &Model::constants)
       .def_rw("materials", &Model::materials)
       .def_rw("loads", &Model::loads)
@@ -182,6 +209,18 @@ void declare_settings(py::module_& m)
   class_<OutputSettings>(m, "OutputSettings")
       .def_ro("xdmf", &OutputSettings::xdmf)
       .def_ro("nodal", &OutputSettings::nodal);
+  class_<AnalysisSettings>(m, "AnalysisSettings", "A dynamic analysis (settings.h)")
+      .def_prop_ro("kind",
+                   [](const AnalysisSettings& a) -> std::string
+                   {
+                     return a.kind == AnalysisSettings::Kind::modal      ? "modal"
+                            : a.kind == AnalysisSettings::Kind::harmonic ? "harmonic"
+                                                                         : "none";
+                   })
+      .def_ro("at_end", &AnalysisSettings::at_end)
+      .def_ro("modes", &AnalysisSettings::modes)
+      .def_ro("target", &AnalysisSettings::target)
+      .def_ro("frequencies", &AnalysisSettings::frequencies);
   class_<RunSettings>(m, "RunSettings")
       .def_ro("T", &RunSettings::T)
       .def_ro("steps", &RunSettings::steps)
@@ -191,7 +230,8 @@ void declare_settings(py::module_& m)
                    { return s.linear == LinearSolver::iterative ? "iterative" : "direct"; })
       .def_ro("petsc_options", &RunSettings::petsc_options)
       .def_ro("probes", &RunSettings::probes)
-      .def_ro("output", &RunSettings::output);
+      .def_ro("output", &RunSettings::output)
+      .def_ro("analysis", &RunSettings::analysis);
 }
 
 void declare_problem(py::module_& m)
@@ -218,6 +258,10 @@ void declare_problem(py::module_& m)
           "The Dirichlet conditions but those of floating electrodes")
       .def_ro("electrodes", &Problem::electrodes)
       .def("target_charges", &Problem::target_charges)
+      .def(
+          "electrode_potentials",
+          [](const Problem& p, const Array& x) { return p.electrode_potentials(view(x)); },
+          py::arg("x"), "The mean potential of each electrode in x (owned entries)")
       .def(
           "reaction_charges",
           [](const Problem& p, const Array& r) { return p.reaction_charges(view(r)); },
@@ -302,6 +346,13 @@ void declare_record(py::module_& m)
       .def_rw("krylov_iterations", &SolveReport::krylov_iterations)
       .def_rw("history", &SolveReport::history)
       .def_rw("acceptance", &SolveReport::acceptance);
+  class_<Probes>(m, "Probes", "Point evaluation of (u, phi) (diagnostics.h)")
+      .def(constructor([](const Problem* p, const std::vector<std::array<double, 3>>& points,
+                          const std::string& source) { return new Probes(*p, points, source); }),
+           py::arg("problem"), py::arg("points"), py::arg("source"))
+      .def("evaluate", &Probes::evaluate, py::arg("problem"),
+           "(u..., phi) at each point, from the problem's collapsed u and phi")
+      .def_ro("points", &Probes::points);
   class_<Record>(m, "Record", "The outputs and summary of a run (record.h)")
       .def(constructor(
                [](Problem* problem, const RunSettings& settings, const std::string& dir,
@@ -413,7 +464,8 @@ PIEZO_MODULE(cpp, m)
          const std::string& solver, bool progress, std::optional<std::string> resume,
          MPICommWrapper comm, const PyModelFactory& make_model,
          const PyMeshConverter& convert_mesh, const std::optional<PyEngine>& loop,
-         const std::optional<std::function<void(int, const std::string&)>>& observer)
+         const std::optional<std::function<void(int, const std::string&)>>& observer,
+         const std::optional<PyAnalysis>& dynamics)
       {
         const json summary = resume ? json::parse(*resume) : json();
         RunRequest request{json::parse(cfg), output, source, solver, progress,
@@ -422,28 +474,31 @@ PIEZO_MODULE(cpp, m)
         if (observer)
           on_step = [&observer](int n, const json& step) { (*observer)(n, step.dump()); };
         const InterruptScope interrupts;
-        return run_config(request, comm.get(), factory(make_model), engine(loop), on_step)
+        return run_config(request, comm.get(), factory(make_model), engine(loop), on_step,
+                          analysis(dynamics))
             .dump();
       },
       py::arg("cfg"), py::arg("output"), py::arg("source"), py::arg("solver"),
       py::arg("progress"), nullable("resume"), py::arg("comm"), py::arg("make_model"),
       py::arg("convert_mesh"), py::arg("engine") = py::none(), py::arg("observer") = py::none(),
+      py::arg("analysis") = py::none(),
       "A run from a validated config (driver.h); the summary as JSON text");
   m.def(
       "command_line",
       [](const std::string& program, const std::vector<std::string>& args, MPICommWrapper comm,
          const std::vector<std::tuple<std::string, std::string, PyModelFactory,
-                                      std::optional<PyEngine>>>& choices,
+                                      std::optional<PyEngine>, std::optional<PyAnalysis>>>& choices,
          const PyMeshConverter& convert_mesh)
       {
         silence_hdf5_errors();
         std::vector<EngineChoice> engines;
-        for (const auto& [name, solver, make_model, loop] : choices)
-          engines.push_back({name, solver, factory(make_model), engine(loop)});
+        for (const auto& [name, solver, make_model, loop, dynamics] : choices)
+          engines.push_back({name, solver, factory(make_model), engine(loop), analysis(dynamics)});
         return command_line(program, args, comm.get(), engines, convert_mesh);
       },
       py::arg("program"), py::arg("args"), py::arg("comm"), py::arg("engines"),
       py::arg("convert_mesh"),
       "The command line of piezo-contact with --engine choosing among "
-      "(name, solver, model factory, time loop or None); returns the exit code");
+      "(name, solver, model factory, time loop or None, dynamic analysis or None); returns "
+      "the exit code");
 }

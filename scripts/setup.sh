@@ -29,6 +29,9 @@ PACKAGES=(
   cmake g++ make pkg-config nlohmann-json3-dev libgtest-dev
   # expressions of x, y, z, t in prescribed data
   libmuparser-dev
+  # eigenvalues of modal analyses: SLEPc (C for the core, slepc4py for the
+  # reference engine)
+  libslepc-real-dev python3-slepc4py
   # Python bindings of the C++ core
   "${BINDINGS[@]}" python3-dev
   # MPI launcher; OpenBLAS makes MUMPS' LU ~3x faster than reference BLAS

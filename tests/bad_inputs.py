@@ -253,6 +253,34 @@ CASES = {
         MMS, ['contact={"c_p":1e12,"obstacle":{' + PLANE + '}}'],
         "contact: a manufactured solution's contact is the paper's foundation (\"contact\": "
         "true, the top-level block with c_p and gap, penalty)"),
+    "a dynamic analysis without density": (
+        SQUARE, ['analysis={"modal":{"modes":3}}'],
+        "material.density: missing: a dynamic analysis needs the mass density of each "
+        "material (kg/m^3)"),
+    "modes < 1": (SQUARE, ['analysis={"modal":{"modes":0}}', "material.density=5680"],
+                  "analysis.modal.modes = 0: must be >= 1"),
+    "both analyses": (
+        SQUARE, ['analysis={"modal":{"modes":1},"harmonic":{"frequencies":[1]}}',
+                 "material.density=5680"],
+        "analysis: give modal or harmonic, not both"),
+    "a negative frequency": (
+        SQUARE, ['analysis={"harmonic":{"frequencies":[1e3,-1e3]}}', "material.density=5680"],
+        "analysis.harmonic.frequencies[1] = -1000.0: must be >= 0"),
+    "an empty band": (
+        SQUARE, ['analysis={"harmonic":{"frequencies":{"start":2e3,"stop":1e3,"points":10}}}',
+                 "material.density=5680"],
+        "analysis.harmonic.frequencies: the band 2000 to 1000 Hz is empty (stop > start, or "
+        "one point)"),
+    "a history in harmonic data": (
+        SQUARE, ['analysis={"harmonic":{"frequencies":[1e3]}}', "material.density=5680",
+                 'boundaries.top.traction={"value":[0,-10],"history":{"ramp":1}}'],
+        "boundaries.top.traction.history: a harmonic analysis takes each datum's value as its "
+        "complex amplitude (phase 0): no history, no expression of t"),
+    "harmonic with nothing driven": (
+        SQUARE, ['analysis={"harmonic":{"frequencies":[1e3]}}', "material.density=5680",
+                 "boundaries.top.traction=[0,0]"],
+        "analysis.harmonic: nothing is driven (give a load, a prescribed displacement or "
+        "potential, or a floating electrode's charge: their values are the amplitudes)"),
 }
 
 

@@ -103,6 +103,12 @@ public:
       _m.contact_facets.insert(_m.contact_facets.end(), facets.begin(), facets.end());
     }
     _coefficients = {{"x", _m.x}, {"x_prev", _m.x_prev}};
+    if (spec.linearised)
+    {
+      _m.x_dot = std::make_shared<fem::Function<double>>(_m.W);
+      _m.x_dot->name = "x_dot";
+      _coefficients["x_dot"] = _m.x_dot;
+    }
     _data = data;
     add_fields(_coefficients, _m.data_fields, data);
   }
@@ -211,6 +217,10 @@ private:
 
   void place(const forms::Term& term, const Instance& piece)
   {
+    const bool linearisation
+        = term.role == Role::K or term.role == Role::C or term.role == Role::M;
+    if (linearisation and !_spec.linearised)
+      return;
     const bool cells = term.piece == Piece::region or term.piece == Piece::mesh;
     if (term.expression)
       return place_expression(term, piece);
@@ -235,6 +245,12 @@ private:
       [[fallthrough]];
     case Role::J:
       return _m.J.push_back(form);
+    case Role::K:
+      return _m.K.push_back(form);
+    case Role::C:
+      return _m.C.push_back(form);
+    case Role::M:
+      return _m.M.push_back(form);
     case Role::output:
       return place_output(term, piece, form);
     }

@@ -247,7 +247,7 @@ struct Check
            {"boolean", &Check::boolean}, {"string", &Check::string},
            {"scalar", &Check::scalar},   {"vector", &Check::vector},
            {"matrix", &Check::matrix},   {"pairs", &Check::pairs},
-           {"points", &Check::points}};
+           {"points", &Check::points},   {"numbers", &Check::numbers}};
     const std::string t = rule["type"];
     const auto method = by_type.find(t);
     if (method == by_type.end())
@@ -261,7 +261,7 @@ struct Check
   {
     const auto kind = [](const std::string& type)
     {
-      return type == "vector" or type == "integers" ? json::value_t::array
+      return type == "vector" or type == "integers" or type == "numbers" ? json::value_t::array
              : type == "object" or type == "map"    ? json::value_t::object
              : type == "boolean"                    ? json::value_t::boolean
                                                     : json::value_t::number_float;
@@ -283,6 +283,17 @@ struct Check
           and (kind(option["type"]) == json::value_t::array) == value.is_array())
         return check(value, option, path, source, d);
     wrong(rule["expected"].get<std::string>());
+  }
+
+  /// A list of numbers of any length but 0, each within the bounds
+  json numbers() const
+  {
+    if (!(value.is_array() and !value.empty()
+          and std::all_of(value.begin(), value.end(), [](const json& v) { return is_number(v); })))
+      wrong("a non-empty list of numbers");
+    for (std::size_t i = 0; i < value.size(); ++i)
+      check_bounds(value[i], rule, path + "[" + std::to_string(i) + "]", source);
+    return value;
   }
 
   json integers() const
@@ -843,6 +854,84 @@ void check_held(const json& boundaries, const std::string& source)
                "stiffnesses): with frictionless contact nothing holds the body against sliding");
 }
 
+bool analysis_at_end(const json& cfg)
+{
+  for (const auto& [_, block] : cfg["analysis"].items())
+    return block.value("at", "start") == "end";
+  return false;
+}
+
+/// Where a datum has a history (or an expression of t), the first found
+std::string timed_datum(const json& v, const std::string& path)
+{
+  if (v.is_object())
+  {
+    if (v.contains("history"))
+      return join(path, "history");
+    for (const auto& [k, sub] : v.items())
+      if (auto p = timed_datum(sub, join(path, k)); !p.empty())
+        return p;
+  }
+  if (v.is_array())
+    for (std::size_t i = 0; i < v.size(); ++i)
+      if (auto p = timed_datum(v[i], path + "[" + std::to_string(i) + "]"); !p.empty())
+        return p;
+  if (v.is_string())
+    try
+    {
+      if (SpaceTimeExpression(v.get<std::string>()).uses_time())
+        return path;
+    }
+    catch (const std::invalid_argument&) // a word ("nitsche"), not an expression
+    {
+    }
+  return "";
+}
+
+/// A dynamic analysis: one kind; every material has a density; harmonic
+/// data are amplitudes (no history), over a band that holds frequencies
+void check_analysis(const json& cfg, const std::string& source)
+{
+  if (!cfg.contains("analysis"))
+    return;
+  const json& a = cfg["analysis"];
+  if (a.contains("modal") == a.contains("harmonic"))
+    fail(source, std::string("analysis: ") + (a.empty() ? "give modal or harmonic"
+                                                         : "give modal or harmonic, not both"));
+  if (cfg.contains("manufactured"))
+    fail(source, "analysis: not with a manufactured solution (its loads are the exact "
+                 "solution's, not a device's)");
+  const auto has_density = [&](const json& m, const std::string& path)
+  {
+    if (!m.contains("density") and !m.contains("preset"))
+      fail(source, join(path, "density") + ": missing: a dynamic analysis needs the mass "
+                                           "density of each material (kg/m^3)");
+  };
+  if (cfg.contains("material"))
+    has_density(cfg["material"], "material");
+  else
+    for (const auto& [name, m] : cfg["regions"].items())
+      has_density(m, join("regions", name));
+  if (!a.contains("harmonic"))
+    return;
+  const json& f = a["harmonic"]["frequencies"];
+  if (f.is_object())
+  {
+    const double start = f["start"], stop = f["stop"];
+    if (stop < start or (stop == start and f["points"].get<int>() > 1))
+      fail(source, "analysis.harmonic.frequencies: the band " + fmt_g(start) + " to " + fmt_g(stop)
+                       + " Hz is empty (stop > start, or one point)");
+    if (f["spacing"] == "log" and start <= 0.0)
+      fail(source, "analysis.harmonic.frequencies.start = " + fmt_g(start)
+                       + ": a log spacing starts above 0 Hz");
+  }
+  for (const char* group : {"boundaries", "loads", "contact"})
+    if (cfg.contains(group))
+      if (auto p = timed_datum(cfg[group], group); !p.empty())
+        fail(source, p + ": a harmonic analysis takes each datum's value as its complex "
+                         "amplitude (phase 0): no history, no expression of t");
+}
+
 /// The rules across keys, once each key passed its own (Check)
 void check_semantics(const json& cfg, const std::string& source)
 {
@@ -852,9 +941,11 @@ void check_semantics(const json& cfg, const std::string& source)
     check_contact_block(cfg["contact"], "contact", source);
   for (const auto& [name, bc] : cfg["boundaries"].items())
     check_boundary(cfg, name, bc, source);
-  check_held(cfg["boundaries"], source);
+  if (!cfg.contains("analysis") or analysis_at_end(cfg))
+    check_held(cfg["boundaries"], source); // a free body's modes: rigid ones at 0 Hz
   check_electrodes(cfg, source);
   check_manufactured(cfg, source);
+  check_analysis(cfg, source);
 }
 
 /// A component of a validated datum: a number, or an expression (parsed
@@ -1143,6 +1234,47 @@ void bcast_error(std::string& error, MPI_Comm comm)
     throw ConfigError(error);
 }
 
+namespace
+{
+/// The frequencies of a harmonic analysis: a list, or a band
+std::vector<double> frequencies_of(const json& f)
+{
+  if (f.is_array())
+    return f.get<std::vector<double>>();
+  const double start = f["start"], stop = f["stop"];
+  const int n = f["points"];
+  const bool log = f["spacing"] == "log";
+  std::vector<double> out;
+  for (int i = 0; i < n; ++i)
+  {
+    const double s = n == 1 ? 0.0 : double(i) / (n - 1);
+    out.push_back(log ? start * std::pow(stop / start, s) : start + s * (stop - start));
+  }
+  return out;
+}
+
+AnalysisSettings analysis_settings(const json& cfg)
+{
+  AnalysisSettings a;
+  if (!cfg.contains("analysis"))
+    return a;
+  const json& modal = cfg["analysis"].value("modal", json());
+  const json& harmonic = cfg["analysis"].value("harmonic", json());
+  const json& block = modal.is_null() ? harmonic : modal;
+  a.kind = modal.is_null() ? AnalysisSettings::Kind::harmonic : AnalysisSettings::Kind::modal;
+  a.at_end = block["at"] == "end";
+  if (!modal.is_null())
+  {
+    a.modes = modal["modes"];
+    if (modal.contains("target"))
+      a.target = modal["target"].get<double>();
+  }
+  else
+    a.frequencies = frequencies_of(harmonic["frequencies"]);
+  return a;
+}
+} // namespace
+
 RunSettings run_settings(const json& cfg)
 {
   RunSettings s;
@@ -1203,6 +1335,7 @@ RunSettings run_settings(const json& cfg)
     if (d.displacement or d.displacement_exact or d.potential or d.potential_exact or d.floating)
       s.dirichlet.push_back(std::move(d));
   }
+  s.analysis = analysis_settings(cfg);
   return s;
 }
 
@@ -1211,6 +1344,7 @@ ModelSpec model_spec(const json& cfg)
   ModelSpec spec;
   spec.manufactured = cfg.contains("manufactured");
   spec.axisymmetric = cfg.value("formulation", "") == "axisymmetric";
+  spec.linearised = cfg.contains("analysis");
   const auto note_expressions = [&](const json& entry, const std::string& prefix)
   {
     for (const auto& [key, value] : entry.items())

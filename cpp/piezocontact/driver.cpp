@@ -213,7 +213,7 @@ Model model_of(const ModelFactory& make_model, const NamedMesh& mesh, const Mode
 } // namespace
 
 json run_config(const RunRequest& request, MPI_Comm comm, const ModelFactory& make_model,
-                const Engine& engine, const StepObserver& observer)
+                const Engine& engine, const StepObserver& observer, const Analysis& analysis)
 {
   const OutputLock lock(request.output, request.source, comm);
   const RunSettings settings = run_settings(request.cfg);
@@ -257,11 +257,18 @@ json run_config(const RunRequest& request, MPI_Comm comm, const ModelFactory& ma
                {"boundary_lengths", boundary_measures(problem)},
                {"units", units_of(cfg, d)}};
   }
-  if (engine)
-    return engine(problem, settings, request.output, summary, request.resume != nullptr,
-                  request.progress);
-  return run(problem, settings, request.output, summary, request.resume != nullptr,
-             request.progress, observer);
+  const auto& a = settings.analysis;
+  if (a.kind == AnalysisSettings::Kind::none or a.at_end)
+    summary = engine ? engine(problem, settings, request.output, summary,
+                              request.resume != nullptr, request.progress)
+                     : run(problem, settings, request.output, summary, request.resume != nullptr,
+                           request.progress, observer);
+  if (a.kind == AnalysisSettings::Kind::none)
+    return summary;
+  if (!a.at_end) // about the initial state: x = 0, the Constants at t = 0
+    problem.set_time(0.0, settings.T / settings.steps);
+  return analysis ? analysis(problem, settings, request.output, summary, request.source)
+                  : analyse(problem, settings, request.output, summary, request.source);
 }
 
 namespace
@@ -367,7 +374,7 @@ int command_line(const std::string& program, const std::vector<std::string>& arg
 
   const InterruptScope interrupts;
   int code = 0;
-  const auto& [name, solver, make_model, engine] = *chosen;
+  const auto& [name, solver, make_model, engine, analysis] = *chosen;
   try
   {
     RunRequest request{json(), output_dir, config_path, solver, !quiet, nullptr, convert_mesh};
@@ -377,13 +384,13 @@ int command_line(const std::string& program, const std::vector<std::string>& arg
       request.cfg = cfg;
       request.source = summary["config_file"].get<std::string>();
       request.resume = &summary;
-      run_config(request, comm, make_model, engine);
+      run_config(request, comm, make_model, engine, nullptr, analysis);
     }
     else
     {
       request.cfg = load_config(config_path, overrides);
       prepare_output(output_dir, config_path, comm);
-      run_config(request, comm, make_model, engine);
+      run_config(request, comm, make_model, engine, nullptr, analysis);
     }
   }
   catch (const ConfigError& e)

@@ -6,6 +6,7 @@
 #pragma once
 
 #include "config.h"
+#include "dynamics.h"
 #include "mesh.h"
 #include "model.h"
 #include "problem.h"
@@ -29,6 +30,12 @@ using Engine = std::function<json(Problem& problem, const RunSettings& settings,
                                   const std::filesystem::path& out_dir, json summary,
                                   bool resume, bool progress)>;
 
+/// A dynamic analysis about the Problem's state: the library's `analyse`
+/// (dynamics.h) unless another is given
+using Analysis = std::function<json(Problem& problem, const RunSettings& settings,
+                                    const std::filesystem::path& out_dir, json summary,
+                                    const std::string& source)>;
+
 struct RunRequest
 {
   json cfg;                         ///< validated (configure / load_config)
@@ -43,7 +50,8 @@ struct RunRequest
 /// Mesh, model, Problem, time loop; the run's summary. Throws ConfigError,
 /// NewtonFailure, OutputError, Interrupted.
 json run_config(const RunRequest& request, MPI_Comm comm, const ModelFactory& make_model,
-                const Engine& engine = nullptr, const StepObserver& observer = nullptr);
+                const Engine& engine = nullptr, const StepObserver& observer = nullptr,
+                const Analysis& analysis = nullptr);
 
 /// The summary.json of DIR, to continue it, and the config to continue with
 /// (`--set time.T=... --set time.steps=...` extend a run at the same step).
@@ -64,7 +72,8 @@ struct EngineChoice
   std::string name;
   std::string solver;
   ModelFactory make_model;
-  Engine engine = nullptr; ///< the library's time loop if empty
+  Engine engine = nullptr;     ///< the library's time loop if empty
+  Analysis analysis = nullptr; ///< the library's dynamic analyses if empty
 };
 
 /// The command line, arguments without the program name:

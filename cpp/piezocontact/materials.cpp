@@ -359,12 +359,16 @@ void clean(MaterialTensors& m)
   }
 }
 
-json tensors_json(const MaterialTensors& m, const json& from)
+/// The resolved material: its tensors, its density if it has one (given,
+/// or its preset's), and what it was resolved from
+json tensors_json(const MaterialTensors& m, const json& from, const json& density)
 {
   json out = {{"elastic", m.elastic},
               {"viscosity", m.viscosity},
               {"piezoelectric", m.piezoelectric},
               {"permittivity", m.permittivity}};
+  if (!density.is_null())
+    out["density"] = density;
   if (!from.is_null())
     out["resolved_from"] = from;
   return out;
@@ -396,7 +400,7 @@ json resolve_material(const json& spec, int d, const std::string& formulation)
                         spec["piezoelectric"].get<Matrix>(), spec["permittivity"].get<Matrix>()};
       m = reduced(m, formulation);
       clean(m);
-      return tensors_json(m, from);
+      return tensors_json(m, from, spec.value("density", json()));
     }
     // already in the formulation's shape: as given (a resolved material
     // validates as it is: a resumed run reads it back)
@@ -420,7 +424,9 @@ json resolve_material(const json& spec, int d, const std::string& formulation)
   clean(m);
   json from = spec;
   from["relaxation_time"] = tau;
-  return tensors_json(m, from);
+  from.erase("density");
+  const json& preset = presets()["presets"][spec["preset"].get<std::string>()];
+  return tensors_json(m, from, spec.value("density", preset["density"]));
 }
 
 json resolve_materials(json cfg, int d, const std::string& source)

@@ -124,6 +124,9 @@ struct ModelSpec
   /// strain, the weight 2 pi r); plane strain and stress share the plane
   /// kernels and differ in their materials (materials.h)
   bool axisymmetric = false;
+  /// A dynamic analysis follows (config "analysis"): the model carries the
+  /// forms of a linearisation (Model::K, C, M)
+  bool linearised = false;
 };
 
 /// A model builder has no kernels for the degrees a ModelSpec asks for (the
@@ -146,6 +149,8 @@ struct Model
   std::shared_ptr<const compat::FunctionSpace> P;
   /// The unknown at t_n and the state at t_{n-1}, coefficients of the forms
   std::shared_ptr<dolfinx::fem::Function<double>> x, x_prev;
+  /// The velocity a linearisation holds (the forms K and C; null without)
+  std::shared_ptr<dolfinx::fem::Function<double>> x_dot;
   /// The Constants shared by every term, by name (forms/piezo_forms.py
   /// shared_data); the library sets "k" (and "t" if present) each step
   ConstantMap constants;
@@ -168,6 +173,12 @@ struct Model
   /// The applied loads, linear forms (F = internal forces - L): their size
   /// scales the force balance that accepts a step. Optional.
   FormList L;
+  /// A linearisation about the state (x, x_dot) (ModelSpec::linearised;
+  /// forms/terms.py linearised): the stiffness, each residual term's
+  /// derivative with the velocity held (the Jacobian without the
+  /// backward-Euler term), the damping (its derivative in the velocity:
+  /// the viscosity) and the mass (rho, on u only), summed
+  FormList K, C, M;
   /// Components of the foundation's resultant force on the body (N/m in
   /// 2D, N in 3D)
   FormList contact_force;

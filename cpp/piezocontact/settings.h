@@ -94,6 +94,27 @@ enum class LinearSolver
   iterative
 };
 
+/// A dynamic analysis linearised about a state (config "analysis";
+/// dynamics.h)
+struct AnalysisSettings
+{
+  enum class Kind
+  {
+    none,
+    modal,
+    harmonic
+  };
+  Kind kind = Kind::none;
+  /// Linearise about the last converged state of the quasistatic run (else
+  /// about the initial state, with no time loop)
+  bool at_end = false;
+  /// modal: how many modes, nearest `target` (Hz; none: the lowest)
+  int modes = 0;
+  std::optional<double> target;
+  /// harmonic: the frequencies (Hz), in the order given
+  std::vector<double> frequencies;
+};
+
 struct RunSettings
 {
   double T = 1.0;
@@ -106,5 +127,6 @@ struct RunSettings
   std::vector<std::array<double, 3>> probes;
   OutputSettings output;
   std::vector<DirichletSettings> dirichlet;
+  AnalysisSettings analysis;
 };
 } // namespace piezocontact

@@ -10,8 +10,8 @@ from . import api, cpp, mesh_tools, model
 
 def main(argv):
     keep = []  # the Python model objects of the run (the reference engine's)
-    engines = [(name, solver, model.factory(keep=keep), api.engine_loop(name, keep))
-               for name, solver in api.ENGINES.items()]
+    engines = [(name, solver, model.factory(keep=keep), api.engine_loop(name, keep),
+                api.engine_analysis(name, keep)) for name, solver in api.ENGINES.items()]
     code = cpp.command_line("python3 -m piezocontact", argv, MPI.COMM_WORLD, engines,
                             mesh_tools.convert)
     from . import _signals

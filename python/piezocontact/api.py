@@ -30,6 +30,14 @@ def engine_loop(engine, keep, observer=None):
     return reference.engine(keep, observer)
 
 
+def engine_analysis(engine, keep):
+    """The dynamic analysis the driver runs: None for the C++ one."""
+    if engine == "cpp":
+        return None
+    from . import reference_dynamics
+    return reference_dynamics.analysis(keep)
+
+
 def solve(config, output, engine="cpp", extra_residual=None, contact_law=None, overrides=(),
           progress=True, comm=MPI.COMM_WORLD, observer=None, data=None):
     """Run the model of `config` (a path or a dict) and write `output`.
@@ -57,5 +65,5 @@ def solve(config, output, engine="cpp", extra_residual=None, contact_law=None, o
             observer(n, json.loads(record))
     summary = cpp.run_config(json.dumps(cfg), str(output), source, ENGINES[engine], progress,
                              None, comm, model.factory(extra_residual, contact_law, keep, data),
-                             mesh_tools.convert, loop, on_step)
+                             mesh_tools.convert, loop, on_step, engine_analysis(engine, keep))
     return json.loads(summary)

@@ -130,7 +130,7 @@ def _mark(msh, dim, entities):
 
 
 Spec = collections.namedtuple("Spec", "manufactured contact electrodes boundary_keys degrees "
-                              "axisymmetric expression_keys obstacles with_obstacle")
+                              "axisymmetric expression_keys obstacles with_obstacle linearised")
 
 
 class JitModel:
@@ -164,7 +164,7 @@ class JitModel:
         self.spec = Spec(spec.manufactured, list(spec.contact), list(spec.electrodes),
                          {b: list(keys) for b, keys in spec.boundary_keys.items()},
                          tuple(spec.degrees), spec.axisymmetric, list(spec.expression_keys),
-                         list(spec.obstacles), list(spec.with_obstacle))
+                         list(spec.obstacles), list(spec.with_obstacle), spec.linearised)
         self.mesh = msh = python_mesh(named)
         cell_name = compat.cell_name(msh.topology)
         _, mixed, pressure = elements(cell_name, *spec.degrees)
@@ -172,6 +172,8 @@ class JitModel:
         self.P = compat.functionspace(msh, pressure)  # the contact pressure's
         self.x = fem.Function(self.W, name="x")
         self.x_prev = fem.Function(self.W, name="x_prev")
+        # the velocity a linearisation holds (dynamic analyses only)
+        self.x_dot = fem.Function(self.W, name="x_dot") if spec.linearised else None
         self.data, self.materials, self.loads = model_constants(msh, named, spec.manufactured,
                                                                 spec.axisymmetric)
         fields = needs_fields(msh.geometry.dim, self.spec)
@@ -191,6 +193,7 @@ class JitModel:
         self.points = {kind: np.array(points(kind, cell_name, self.spec.degrees))
                        for kind in ("midpoint", "u_nodes", "phi_nodes")}
         self.F, self.J, self.J_state, self.L = [], [], [], []
+        self.K, self.C, self.M = [], [], []  # a linearisation's (spec.linearised)
         self.outputs = {}  # slot -> [(piece name, term name, form or expression)]
         for term in self.terms:
             for name, c in self._instances(term):
@@ -315,6 +318,10 @@ class JitModel:
                 self.outputs[term.slot][-1] = (b, term.name, self.outputs[term.slot][-1][2],
                                                self.named.boundary_facets_of(b, r))
             return
+        if term.role == "M":
+            if self.spec.linearised:
+                self.M.append(fem.form(terms.mass(term, c, self.dx_trial)))
+            return
         form = term.build(c)
         if term.role == "output":
             self.outputs.setdefault(term.slot, []).append((name, term.name, fem.form(form)))
@@ -323,6 +330,16 @@ class JitModel:
         J = terms.jacobian(term, c, self.dx_trial) if term.role == "F" else None
         if J is not None:
             self._jacobian(J, terms.depends_on_state(J, c))
+            if self.spec.linearised:
+                self._linearised(term, c)
+
+    def _linearised(self, term, c):
+        """A residual term's stiffness (its own form, or its Jacobian's) and
+        damping (terms.linearised)."""
+        forms = terms.linearised(term, c, self.x_dot, self.dx_trial)
+        self.K.append(fem.form(forms["K"]) if forms["K"] is not None else self.J[-1])
+        if forms["C"] is not None:
+            self.C.append(fem.form(forms["C"]))
 
     def _jacobian(self, J, state):
         self.J.append(fem.form(J))
@@ -345,6 +362,8 @@ class JitModel:
         J = pf.jacobian(extra, self.x, self.dx_trial)
         if not ufl.algorithms.expand_derivatives(J).empty():
             self._jacobian(J, terms.depends_on_state(J, self.context))
+            if self.spec.linearised:  # its stiffness: a user term has no velocity
+                self.K.append(self.J[-1])
 
     @property
     def F_whole(self):
@@ -367,7 +386,26 @@ class JitModel:
         same terms, summed by UFL rather than by the core). Built on demand:
         only the reference engine needs it (it has no pieces of a boundary
         and a region: _material_of)."""
-        named, msh, c = self.named, self.mesh, self.context
+        return self._whole_sum(self.context, extra_residual)
+
+    def linearised_whole(self):
+        """(K, C, M) as one form each: the reference engine's view of the
+        linearisation (terms.linearised), summed by UFL."""
+        c = self.context.linearised(self.x_dot)
+        F = self._whole_sum(c, self._extra_residual, forms=False)
+        named, msh = self.named, self.mesh
+        dx = ufl.Measure("dx", domain=msh, subdomain_data=compat.meshtags(named.cell_tags))
+        M = sum(pf.inertia(self.x, c.y, c.on(dx(named.region_of[r])).m, m) for r, m in
+                self.materials.items())
+        trial = self.dx_trial
+        return (fem.form(compat.one_subdomain_data(ufl.derivative(F, self.x, trial))),
+                fem.form(compat.one_subdomain_data(ufl.derivative(F, self.x_dot, trial))),
+                fem.form(ufl.derivative(M, self.x, trial)))
+
+    def _whole_sum(self, c, extra_residual, forms=True):
+        """The residual's terms on c, summed (see _whole); `forms`: the pair
+        (F, J) compiled, else the UFL sum."""
+        named, msh = self.named, self.mesh
         dx = ufl.Measure("dx", domain=msh, subdomain_data=compat.meshtags(named.cell_tags))
         ds = ufl.Measure("ds", domain=msh, subdomain_data=compat.meshtags(named.facet_tags))
         contact = tuple(named.tag_of[b] for b in self.spec.contact)
@@ -399,6 +437,8 @@ class JitModel:
             u, phi = ufl.split(self.x)
             w, psi = ufl.split(c.y)
             F = compat.one_subdomain_data(F + extra_residual(u, phi, w, psi, self._hook_data()))
+        if not forms:
+            return F
         return fem.form(F), fem.form(pf.jacobian(F, self.x, self.dx_trial))
 
     def _material_of(self, boundary):
@@ -461,6 +501,9 @@ class JitModel:
         m.contact_facets = self.contact_facets
         m.F, m.J, m.J_contact, m.L = ([c(f) for f in forms] for forms in
                                       (self.F, self.J, self.J_state, self.L))
+        if self.x_dot is not None:
+            m.x_dot = c(self.x_dot)
+            m.K, m.C, m.M = ([c(f) for f in forms] for forms in (self.K, self.C, self.M))
         m.contact_force = [c(f) for _, _, f in self._output("contact_force")]
         fields = []
         for (region, _, D), (_, _, stress) in zip(self._output("electric_displacement"),
