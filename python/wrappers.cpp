@@ -11,6 +11,7 @@
 #include <piezocontact/driver.h>
 #include <piezocontact/mesh.h>
 #include <piezocontact/output.h>
+#include <piezocontact/modal.h>
 #include <piezocontact/record.h>
 
 using namespace piezocontact;
@@ -403,6 +404,7 @@ PIEZO_MODULE(cpp, m)
   output_error = register_exception<OutputError>(m, "OutputError", PyExc_OSError);
   interrupted = register_exception<Interrupted>(m, "Interrupted", PyExc_KeyboardInterrupt);
   m.attr("exit_config_error") = exit_config_error;
+  m.attr("non_hermitian_pencil") = std::string(NonHermitianPencil().what());
   m.attr("exit_run_error") = exit_run_error;
   m.attr("exit_output_error") = exit_output_error;
 

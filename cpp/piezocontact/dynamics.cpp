@@ -70,10 +70,23 @@ void write_frames(Problem& p, const fs::path& xdmf, int count,
                       + (error.empty() ? "failed on another rank" : error));
 }
 
-json modal(Problem& p, const RunSettings& s, const fs::path& dir, json summary,
-           const Linearisation& lin)
+std::vector<Mode> modes_or_refuse(const Linearisation& lin, const AnalysisSettings& a,
+                                  const std::string& source)
 {
-  const auto modes = natural_modes(lin, s.analysis);
+  try
+  {
+    return natural_modes(lin, a);
+  }
+  catch (const NonHermitianPencil& e)
+  {
+    throw ConfigError(source + ": analysis.modal: " + e.what());
+  }
+}
+
+json modal(Problem& p, const RunSettings& s, const fs::path& dir, json summary,
+           const Linearisation& lin, const std::string& source)
+{
+  const auto modes = modes_or_refuse(lin, s.analysis, source);
   json list = json::array();
   const std::size_t n = modes.empty() ? 0 : modes[0].x.size();
   std::vector<double> r(n);
@@ -207,7 +220,7 @@ json analyse(Problem& p, const RunSettings& s, const fs::path& dir, json summary
   const Linearisation lin(p);
   summary["analysis_state"] = s.analysis.at_end ? "end" : "start";
   summary = s.analysis.kind == AnalysisSettings::Kind::modal
-                ? modal(p, s, dir, summary, lin)
+                ? modal(p, s, dir, summary, lin, source)
                 : harmonic(p, s, dir, summary, lin, source);
   if (!summary.contains("status") or summary["status"] != "failed")
     summary["status"] = "completed";

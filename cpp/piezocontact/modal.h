@@ -15,6 +15,7 @@
 #include "linearisation.h"
 #include "settings.h"
 
+#include <stdexcept>
 #include <vector>
 
 namespace piezocontact
@@ -27,6 +28,21 @@ struct Mode
   /// The shape on the full space (owned entries), normalised to x^T M x = 1
   /// (its largest entry positive)
   std::vector<double> x;
+};
+
+/// The linearised stiffness is not symmetric once its electric rows are
+/// negated: Nitsche's method on a piezoelectric contact boundary (its
+/// normal stress holds the electric field, the charge equation has no
+/// matching term)
+struct NonHermitianPencil : std::runtime_error
+{
+  NonHermitianPencil()
+      : std::runtime_error("the linearised stiffness is not symmetric (Nitsche's method on a "
+                           "piezoelectric contact boundary: its normal stress holds the electric "
+                           "field); modal analyses of such a state are not supported yet: use "
+                           "the penalty method (\"method\": \"penalty\") there")
+  {
+  }
 };
 
 /// The `settings.modes` modes nearest the target (ascending frequency);

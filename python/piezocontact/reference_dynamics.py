@@ -141,16 +141,25 @@ def _negate_electric_rows(a, K):
     sign.set(1.0)
     n = sign.getLocalSize()
     phi = np.asarray(a.problem.phi_dofs)
-    with sign.localForm() as local:
-        local.array_w[phi[phi < n]] = -1.0
-    sign.assemble()
+    values = sign.getArray()
+    values[phi[phi < n]] = -1.0
+    sign.setArray(values)
     K.diagonalScale(L=sign)  # a removed phi dof's diagonal becomes -1: still infinite
     return K
 
 
-def _modes(a, settings):
+def _symmetric(K):
+    D = K.copy()
+    D.axpy(-1.0, K.transpose(PETSc.Mat()),  # a new matrix: transpose() alone is in place
+           structure=PETSc.Mat.Structure.DIFFERENT_NONZERO_PATTERN)
+    return D.norm(PETSc.NormType.FROBENIUS) <= 1e-12 * K.norm(PETSc.NormType.FROBENIUS)
+
+
+def _modes(a, settings, source):
     from slepc4py import SLEPc
     K, M = _negate_electric_rows(a, a.matrix(a.K_form, 1.0)), a.matrix(a.M_form, 0.0)
+    if not _symmetric(K):
+        raise cpp.ConfigError(f"{source}: analysis.modal: {cpp.non_hermitian_pencil}")
     target = settings.analysis.target
     sigma = ((TWO_PI * target) ** 2 if target is not None
              else -1e-6 * K.norm(PETSc.NormType.INFINITY) / M.norm(PETSc.NormType.INFINITY))
@@ -186,9 +195,9 @@ def _modes(a, settings):
     return out
 
 
-def modal(a, problem, settings, output, summary):
+def modal(a, problem, settings, output, summary, source):
     K0 = a.full_matrix(a.K_form)
-    modes = _modes(a, settings)
+    modes = _modes(a, settings, source)
     names = [e.name for e in problem.electrodes]
     listed = []
     for lam, x, error in modes:
@@ -320,7 +329,7 @@ def analysis(keep):
         a = _Assembly(keep[-1], problem)
         summary["analysis_state"] = "end" if settings.analysis.at_end else "start"
         if settings.analysis.kind == "modal":
-            summary = modal(a, problem, settings, output, summary)
+            summary = modal(a, problem, settings, output, summary, source)
         else:
             summary = harmonic(a, problem, settings, output, summary, source)
         summary.setdefault("status", "completed")
