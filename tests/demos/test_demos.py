@@ -21,6 +21,8 @@ DEMOS = {
     "disc": [PY, "demos/demo_disc.py"],
     "plate": [PY, "demos/demo_plate.py", "--set", "mesh.n=8"],
     "indentation": [PY, "demos/demo_indentation.py"],
+    "transducer": [PY, "demos/demo_transducer.py", "--points", "100"],
+    "contact_resonance": [PY, "demos/demo_contact_resonance.py"],
 }
 
 
