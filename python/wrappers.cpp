@@ -11,7 +11,6 @@
 #include <piezocontact/driver.h>
 #include <piezocontact/mesh.h>
 #include <piezocontact/output.h>
-#include <piezocontact/modal.h>
 #include <piezocontact/record.h>
 
 using namespace piezocontact;
@@ -404,7 +403,6 @@ PIEZO_MODULE(cpp, m)
   output_error = register_exception<OutputError>(m, "OutputError", PyExc_OSError);
   interrupted = register_exception<Interrupted>(m, "Interrupted", PyExc_KeyboardInterrupt);
   m.attr("exit_config_error") = exit_config_error;
-  m.attr("non_hermitian_pencil") = std::string(NonHermitianPencil().what());
   m.attr("exit_run_error") = exit_run_error;
   m.attr("exit_output_error") = exit_output_error;
 

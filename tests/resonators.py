@@ -92,3 +92,17 @@ def on_foundation(state):
     cfg["boundaries"]["top"] = {"potential": 0.0,
                                 "displacement": [None, -1e-8 if state == "end" else 0.0]}
     return cfg
+
+
+def on_rigid_plane(state):
+    """The layer on a rigid plane at y = -1 nm below its bottom, Nitsche's
+    method (no penetration: the Signorini limit), its top grounded and
+    held: open at the start, closed at the end of a run that moves the top
+    10 nm down. Its normal stress holds e^T grad phi: the linearised
+    stiffness is not symmetric."""
+    cfg = on_foundation(state)
+    del cfg["contact"]
+    cfg["boundaries"]["bottom"] = {"contact": {
+        "method": "nitsche",
+        "obstacle": {"plane": {"point": [0.0, -1e-9], "normal": [0.0, 1.0]}}}}
+    return cfg

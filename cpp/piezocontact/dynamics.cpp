@@ -6,6 +6,7 @@
 #include "output.h"
 #include "output_mesh.h"
 
+#include <chrono>
 #include <cmath>
 #include <complex>
 #include <dolfinx/io/XDMFFile.h>
@@ -70,23 +71,19 @@ void write_frames(Problem& p, const fs::path& xdmf, int count,
                       + (error.empty() ? "failed on another rank" : error));
 }
 
-std::vector<Mode> modes_or_refuse(const Linearisation& lin, const AnalysisSettings& a,
-                                  const std::string& source)
-{
-  try
-  {
-    return natural_modes(lin, a);
-  }
-  catch (const NonHermitianPencil& e)
-  {
-    throw ConfigError(source + ": analysis.modal: " + e.what());
-  }
-}
-
 json modal(Problem& p, const RunSettings& s, const fs::path& dir, json summary,
-           const Linearisation& lin, const std::string& source)
+           const Linearisation& lin)
 {
-  const auto modes = modes_or_refuse(lin, s.analysis, source);
+  ModalCost cost;
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto modes = natural_modes(lin, s.analysis, &cost);
+  summary["analysis_timing"] = {
+      {"factorisation_s", cost.factorisation_s},
+      {"eigensolver_s", cost.eigensolver_s},
+      {"solves", cost.solves},
+      {"one_solve_s", cost.solve_s},
+      {"pencil", cost.hermitian ? "hermitian" : "condensed"},
+      {"total_s", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()}};
   json list = json::array();
   const std::size_t n = modes.empty() ? 0 : modes[0].x.size();
   std::vector<double> r(n);
@@ -132,24 +129,82 @@ json modal(Problem& p, const RunSettings& s, const fs::path& dir, json summary,
   return summary;
 }
 
-json harmonic(Problem& p, const RunSettings& s, const fs::path& dir, json summary,
-              const Linearisation& lin, const std::string& source)
+/// The amplitude of each electrode's prescribed potential (0: grounded or
+/// floating)
+std::vector<double> driven_potentials(Problem& p)
 {
-  HarmonicSolver solver(p, lin, source);
-  const Probes probes(p, s.probes, source);
-  // a driven electrode: a prescribed potential of nonzero amplitude
-  const std::vector<double> driven_V = [&]
+  auto x = p.x->x()->mutable_array();
+  const std::vector<double> saved(x.begin(), x.end());
+  std::fill(x.begin(), x.end(), 0.0);
+  for (const auto& e : p.electrodes)
+    if (!e.floating)
+      compat::set_bc_values(*e.bc, x);
+  auto V = p.electrode_potentials(std::span<const double>(x.data(), x.size()));
+  std::copy(saved.begin(), saved.end(), x.begin());
+  return V;
+}
+
+/// Each electrode's charge, current, potential and (driven) admittance
+json electrodes_json(const Problem& p, const HarmonicResponse& h,
+                     const std::vector<double>& driven)
+{
+  const double w = 2 * std::numbers::pi * h.frequency;
+  const auto Qr = p.reaction_charges(h.residual_re), Qi = p.reaction_charges(h.residual_im);
+  const auto Vr = p.electrode_potentials(h.re), Vi = p.electrode_potentials(h.im);
+  json out = json::object();
+  for (std::size_t e = 0; e < p.electrodes.size(); ++e)
   {
-    auto x = p.x->x()->mutable_array();
-    const std::vector<double> saved(x.begin(), x.end());
-    std::fill(x.begin(), x.end(), 0.0);
-    for (const auto& e : p.electrodes)
-      if (!e.floating)
-        compat::set_bc_values(*e.bc, x);
-    auto V = p.electrode_potentials(std::span<const double>(x.data(), x.size()));
-    std::copy(saved.begin(), saved.end(), x.begin());
-    return V;
-  }();
+    const Complex Q(Qr[e], Qi[e]), I = Complex(0.0, w) * Q;
+    json entry = {{"charge", complex_json(Q)}, {"current", complex_json(I)},
+                  {"potential", complex_json({Vr[e], Vi[e]})}};
+    // the circuit's admittance: the current the source drives into the
+    // electrode, -I (charge is int D.nu, minus the free charge), over V
+    if (!p.electrodes[e].floating and driven[e] != 0.0)
+      entry["admittance"] = complex_json(-I / driven[e]);
+    out[p.electrodes[e].name] = entry;
+  }
+  return out;
+}
+
+/// The probes' complex u and phi
+json probes_json(Problem& p, const Probes& probes, const HarmonicResponse& h)
+{
+  set_state(p, h.re);
+  const auto re = probes.evaluate(p);
+  set_state(p, h.im);
+  const auto im = probes.evaluate(p);
+  const std::size_t d = p.dim();
+  json out = json::array();
+  for (std::size_t i = 0; i < probes.points.size(); ++i)
+  {
+    json u = json::array();
+    for (std::size_t c = 0; c < d; ++c)
+      u.push_back(complex_json({re[i][c], im[i][c]}));
+    out.push_back(
+        {{"point", std::vector<double>(probes.points[i].begin(), probes.points[i].begin() + d)},
+         {"u", u},
+         {"phi", complex_json({re[i][d], im[i][d]})}});
+  }
+  return out;
+}
+
+json harmonic_timing(const std::vector<HarmonicResponse>& responses)
+{
+  json out = {{"assembly_s", json::array()}, {"factorisation_s", json::array()},
+              {"solve_s", json::array()}};
+  for (const auto& h : responses)
+  {
+    out["assembly_s"].push_back(h.assembly_s);
+    out["factorisation_s"].push_back(h.factorisation_s);
+    out["solve_s"].push_back(h.solve_s);
+  }
+  return out;
+}
+
+/// harmonic.xdmf: u and phi, real and imaginary parts, at "time" = f
+void write_responses(Problem& p, const fs::path& xdmf,
+                     const std::vector<HarmonicResponse>& responses)
+{
   std::vector<std::shared_ptr<fem::Function<double>>> fields;
   for (const auto& [V, name] : {std::pair{p.V_u, "u_re"}, std::pair{p.V_u, "u_im"},
                                std::pair{p.V_phi, "phi_re"}, std::pair{p.V_phi, "phi_im"}})
@@ -157,59 +212,39 @@ json harmonic(Problem& p, const RunSettings& s, const fs::path& dir, json summar
     fields.push_back(std::make_shared<fem::Function<double>>(V));
     fields.back()->name = name;
   }
+  write_frames(p, xdmf, int(responses.size()), fields,
+               [&](int i)
+               {
+                 for (int part = 0; part < 2; ++part)
+                 {
+                   set_state(p, part == 0 ? responses[i].re : responses[i].im);
+                   std::ranges::copy(p.u->x()->array(), fields[part]->x()->mutable_array().begin());
+                   std::ranges::copy(p.phi->x()->array(),
+                                     fields[2 + part]->x()->mutable_array().begin());
+                 }
+                 return responses[i].frequency;
+               });
+}
+
+json harmonic(Problem& p, const RunSettings& s, const fs::path& dir, json summary,
+              const Linearisation& lin, const std::string& source)
+{
+  HarmonicSolver solver(p, lin, source);
+  const Probes probes(p, s.probes, source);
+  const auto driven = driven_potentials(p);
   std::vector<HarmonicResponse> responses;
   json list = json::array();
   for (double f : s.analysis.frequencies)
   {
-    responses.push_back(solver.solve(f));
-    const auto& h = responses.back();
-    const double w = 2 * std::numbers::pi * f;
-    const auto Qr = p.reaction_charges(h.residual_re), Qi = p.reaction_charges(h.residual_im);
-    const auto Vr = p.electrode_potentials(h.re), Vi = p.electrode_potentials(h.im);
-    json electrodes = json::object();
-    for (std::size_t e = 0; e < p.electrodes.size(); ++e)
-    {
-      const Complex Q(Qr[e], Qi[e]), I = Complex(0.0, w) * Q;
-      json entry = {{"charge", complex_json(Q)}, {"current", complex_json(I)},
-                    {"potential", complex_json({Vr[e], Vi[e]})}};
-      // the circuit's admittance: the current the source drives into the
-      // electrode, -I (charge is int D.nu, minus the free charge), over V
-      if (!p.electrodes[e].floating and driven_V[e] != 0.0)
-        entry["admittance"] = complex_json(-I / driven_V[e]);
-      electrodes[p.electrodes[e].name] = entry;
-    }
-    set_state(p, h.re);
-    const auto re = probes.evaluate(p);
-    set_state(p, h.im);
-    const auto im = probes.evaluate(p);
-    json probe_list = json::array();
-    for (std::size_t i = 0; i < probes.points.size(); ++i)
-    {
-      const std::size_t d = p.dim();
-      json u = json::array();
-      for (std::size_t c = 0; c < d; ++c)
-        u.push_back(complex_json({re[i][c], im[i][c]}));
-      probe_list.push_back(
-          {{"point", std::vector<double>(probes.points[i].begin(), probes.points[i].begin() + d)},
-           {"u", u},
-           {"phi", complex_json({re[i][d], im[i][d]})}});
-    }
-    list.push_back({{"frequency", f}, {"electrodes", electrodes}, {"probes", probe_list}});
+    const auto& h = responses.emplace_back(solver.solve(f));
+    list.push_back({{"frequency", f},
+                    {"electrodes", electrodes_json(p, h, driven)},
+                    {"probes", probes_json(p, probes, h)}});
   }
   summary["harmonic"] = list;
+  summary["analysis_timing"] = harmonic_timing(responses);
   if (s.output.xdmf)
-    write_frames(p, dir / "harmonic.xdmf", int(responses.size()), fields,
-                 [&](int i)
-                 {
-                   for (int part = 0; part < 2; ++part)
-                   {
-                     set_state(p, part == 0 ? responses[i].re : responses[i].im);
-                     std::ranges::copy(p.u->x()->array(), fields[part]->x()->mutable_array().begin());
-                     std::ranges::copy(p.phi->x()->array(),
-                                       fields[2 + part]->x()->mutable_array().begin());
-                   }
-                   return responses[i].frequency;
-                 });
+    write_responses(p, dir / "harmonic.xdmf", responses);
   return summary;
 }
 } // namespace
@@ -217,11 +252,16 @@ json harmonic(Problem& p, const RunSettings& s, const fs::path& dir, json summar
 json analyse(Problem& p, const RunSettings& s, const fs::path& dir, json summary,
              const std::string& source)
 {
+  const auto t0 = std::chrono::steady_clock::now();
   const Linearisation lin(p);
+  const double linearisation_s
+      = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   summary["analysis_state"] = s.analysis.at_end ? "end" : "start";
   summary = s.analysis.kind == AnalysisSettings::Kind::modal
-                ? modal(p, s, dir, summary, lin, source)
+                ? modal(p, s, dir, summary, lin)
                 : harmonic(p, s, dir, summary, lin, source);
+  summary["analysis_timing"]["linearisation_s"] = linearisation_s;
+  summary["dofs"] = p.W->dofmap()->index_map->size_global() * p.W->dofmap()->index_map_bs();
   if (!summary.contains("status") or summary["status"] != "failed")
     summary["status"] = "completed";
   collectively(p.comm, rank_of(p.comm) == 0,

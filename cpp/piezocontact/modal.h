@@ -9,13 +9,16 @@
 // rows of K with nothing in M) to 0, out of reach; no phi elimination is
 // needed, the LU condenses it. sigma: (2 pi target)^2, or, for the lowest
 // modes, slightly below 0 so that K - sigma M stays regular when rigid-body
-// modes make K singular (they come out at about 0 Hz).
+// modes make K singular (they come out at about 0 Hz). A pencil that is not
+// Hermitian (Nitsche's method on a piezoelectric contact boundary: its normal
+// stress holds the electric field) is solved as a standard problem on the
+// dofs with mass, v -> (K - sigma M)^-1 M v restricted to them: phi is
+// eliminated by the same LU.
 #pragma once
 
 #include "linearisation.h"
 #include "settings.h"
 
-#include <stdexcept>
 #include <vector>
 
 namespace piezocontact
@@ -30,22 +33,21 @@ struct Mode
   std::vector<double> x;
 };
 
-/// The linearised stiffness is not symmetric once its electric rows are
-/// negated: Nitsche's method on a piezoelectric contact boundary (its
-/// normal stress holds the electric field, the charge equation has no
-/// matching term)
-struct NonHermitianPencil : std::runtime_error
+/// What a modal solve cost (docs/benchmarks.md): the LU of K - sigma M, the
+/// eigensolver after it and the linear solves (operator applications) it made
+struct ModalCost
 {
-  NonHermitianPencil()
-      : std::runtime_error("the linearised stiffness is not symmetric (Nitsche's method on a "
-                           "piezoelectric contact boundary: its normal stress holds the electric "
-                           "field); modal analyses of such a state are not supported yet: use "
-                           "the penalty method (\"method\": \"penalty\") there")
-  {
-  }
+  double factorisation_s = 0.0, eigensolver_s = 0.0;
+  int solves = 0;
+  /// One solve on the factorisation, timed after the eigensolver: the
+  /// floor of shift-and-invert is factorisation_s + solves * solve_s
+  double solve_s = 0.0;
+  /// The pencil was Hermitian (GHEP), else solved condensed on the dofs with mass
+  bool hermitian = true;
 };
 
 /// The `settings.modes` modes nearest the target (ascending frequency);
 /// fewer if the eigensolver converged fewer. Collective.
-std::vector<Mode> natural_modes(const Linearisation& lin, const AnalysisSettings& settings);
+std::vector<Mode> natural_modes(const Linearisation& lin, const AnalysisSettings& settings,
+                                ModalCost* cost = nullptr);
 } // namespace piezocontact

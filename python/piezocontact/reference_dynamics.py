@@ -8,7 +8,8 @@ where the C++ core merges dofs with a prolongation P^T K P), solved by
 slepc4py and petsc4py with choices of its own:
   * modal: K with its electric rows negated (a Hermitian pencil, as the
     core's), shift-and-invert at the target or just below 0 (a shift of
-    its own scale), Krylov-Schur;
+    its own scale), Krylov-Schur; a non-Hermitian one condensed on the dofs
+    with mass by a petsc4py Python matrix;
   * harmonic: the real block system built by petsc4py's MatNest, lifted
     from unconstrained matrices by dolfinx's own set_bc.
 Nothing is shared with the core but the forms, the electrodes' dofs, the
@@ -155,34 +156,87 @@ def _symmetric(K):
     return D.norm(PETSc.NormType.FROBENIUS) <= 1e-12 * K.norm(PETSc.NormType.FROBENIUS)
 
 
-def _modes(a, settings, source):
+class _Condensed:
+    """A non-Hermitian pencil (Nitsche on a piezoelectric contact boundary)
+    as a standard problem on the dofs with mass: v -> R (K - sigma M)^-1 M E v
+    (a petsc4py Python matrix; the core has its own, modal.cpp)."""
+
+    def __init__(self, K, M, sigma):
+        A = K.copy()
+        A.axpy(-sigma, M, structure=PETSc.Mat.Structure.DIFFERENT_NONZERO_PATTERN)
+        self.ksp = PETSc.KSP().create(K.getComm())
+        self.ksp.setOptionsPrefix("piezocontact_reference_condensed_")
+        self.ksp.setType("preonly")
+        self.ksp.getPC().setType("lu")
+        self.ksp.getPC().setFactorSolverType("mumps")
+        self.ksp.setOperators(A)
+        self.M, self.A = M, A
+        start = M.getOwnershipRange()[0]
+        d = M.getDiagonal().getArray()
+        self.U = PETSc.IS().createGeneral((start + np.flatnonzero(d > 0)).astype(PETSc.IntType),
+                                          comm=K.getComm())
+        self.full_in, self.full_out = K.createVecs()
+        self.Min = K.createVecLeft()
+
+    def mult(self, mat, v, y):
+        self.full_in.set(0.0)
+        self.full_in.isaxpy(self.U, 1.0, v)
+        self.M.mult(self.full_in, self.Min)
+        self.ksp.solve(self.Min, self.full_out)
+        if self.ksp.getConvergedReason() < 0:
+            raise RuntimeError("singular K - sigma M")
+        y.array_w[:] = self.full_out.getValues(self.U.getIndices())
+
+    def matrix(self):
+        n = self.U.getLocalSize()
+        S = PETSc.Mat().createPython(((n, None), (n, None)), self, comm=self.M.getComm())
+        S.setUp()
+        return S
+
+
+def _modes(a, settings):
     from slepc4py import SLEPc
     K, M = _negate_electric_rows(a, a.matrix(a.K_form, 1.0)), a.matrix(a.M_form, 0.0)
-    if not _symmetric(K):
-        raise cpp.ConfigError(f"{source}: analysis.modal: {cpp.non_hermitian_pencil}")
     target = settings.analysis.target
     sigma = ((TWO_PI * target) ** 2 if target is not None
              else -1e-6 * K.norm(PETSc.NormType.INFINITY) / M.norm(PETSc.NormType.INFINITY))
     eps = SLEPc.EPS().create(K.getComm())
-    eps.setOptionsPrefix("piezocontact_reference_modal_")
-    eps.setOperators(K, M)
-    eps.setProblemType(SLEPc.EPS.ProblemType.GHEP)
     eps.setDimensions(settings.analysis.modes)
-    eps.setTarget(sigma)
-    eps.setWhichEigenpairs(SLEPc.EPS.Which.TARGET_MAGNITUDE)
     eps.setTolerances(1e-12, 500)
-    st = eps.getST()
-    st.setType(SLEPc.ST.Type.SINVERT)
-    ksp = st.getKSP()
-    ksp.setType("preonly")
-    ksp.getPC().setType("lu")
-    ksp.getPC().setFactorSolverType("mumps")
+    condensed = None
+    if _symmetric(K):
+        eps.setOptionsPrefix("piezocontact_reference_modal_")
+        eps.setOperators(K, M)
+        eps.setProblemType(SLEPc.EPS.ProblemType.GHEP)
+        eps.setTarget(sigma)
+        eps.setWhichEigenpairs(SLEPc.EPS.Which.TARGET_MAGNITUDE)
+        st = eps.getST()
+        st.setType(SLEPc.ST.Type.SINVERT)
+        ksp = st.getKSP()
+        ksp.setType("preonly")
+        ksp.getPC().setType("lu")
+        ksp.getPC().setFactorSolverType("mumps")
+    else:
+        condensed = _Condensed(K, M, sigma)
+        S = condensed.matrix()
+        eps.setOptionsPrefix("piezocontact_reference_condensed_")
+        eps.setOperators(S)
+        eps.setProblemType(SLEPc.EPS.ProblemType.NHEP)
+        eps.setWhichEigenpairs(SLEPc.EPS.Which.LARGEST_MAGNITUDE)
     eps.solve()
     out = []
-    z, zi = K.createVecs()
     Mz = K.createVecLeft()
     for i in range(min(eps.getConverged(), settings.analysis.modes)):
-        lam = eps.getEigenpair(i, z, zi).real
+        if condensed is None:
+            z = K.createVecRight()
+            lam = eps.getEigenpair(i, z).real
+        else:
+            v = S.createVecRight()
+            theta = eps.getEigenpair(i, v).real
+            lam = sigma + 1.0 / theta
+            condensed.mult(S, v, v.duplicate())
+            z = condensed.full_out.copy()
+            z.scale(1.0 / theta)
         M.mult(z, Mz)
         z.scale(1.0 / math.sqrt(abs(z.dot(Mz))))
         x = a.full(z)
@@ -195,9 +249,9 @@ def _modes(a, settings, source):
     return out
 
 
-def modal(a, problem, settings, output, summary, source):
+def modal(a, problem, settings, output, summary):
     K0 = a.full_matrix(a.K_form)
-    modes = _modes(a, settings, source)
+    modes = _modes(a, settings)
     names = [e.name for e in problem.electrodes]
     listed = []
     for lam, x, error in modes:
@@ -291,7 +345,7 @@ def harmonic(a, problem, settings, output, summary, source):
         b_im = Cg.copy()
         b_im.scale(-w)
         fem.petsc.set_bc(b_re, a.bcs)   # x = g on Dirichlet dofs
-        fem.petsc.set_bc(b_im, a.bcs, scale=0.0)
+        fem.petsc.set_bc(b_im, a.bcs, None, 0.0)  # scale (0.5), alpha (0.9): positional
         x_re, x_im = _block_solve(Kw, Cw, b_re, b_im)
         x_re, x_im = a.full(x_re), a.full(x_im)
         Qr = problem.reaction_charges(a.reactions(K_full, x_re, L_full))
@@ -329,7 +383,7 @@ def analysis(keep):
         a = _Assembly(keep[-1], problem)
         summary["analysis_state"] = "end" if settings.analysis.at_end else "start"
         if settings.analysis.kind == "modal":
-            summary = modal(a, problem, settings, output, summary, source)
+            summary = modal(a, problem, settings, output, summary)
         else:
             summary = harmonic(a, problem, settings, output, summary, source)
         summary.setdefault("status", "completed")

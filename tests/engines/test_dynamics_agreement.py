@@ -10,7 +10,7 @@ import math
 
 import pytest
 from conftest import ENGINES, run_solver
-from resonators import T, layer, on_foundation, open_circuit, short_circuit
+from resonators import T, layer, on_foundation, on_rigid_plane, open_circuit, short_circuit
 
 
 def run_all(tmp_path, cfg, engines=ENGINES, np_=1):
@@ -42,6 +42,7 @@ CASES = {
     "open circuit (a floating electrode)": (
         lambda: layer("open", 2, T / 10, {"modal": {"modes": 4}}), ("potential", ["top"])),
     "contact closed at the end": (lambda: on_foundation("end"), (None, [])),
+    "a rigid plane by Nitsche (not Hermitian)": (lambda: on_rigid_plane("end"), (None, [])),
 }
 
 
