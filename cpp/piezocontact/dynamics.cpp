@@ -124,7 +124,8 @@ json modal(Problem& p, const RunSettings& s, const fs::path& dir, json summary,
   {
     summary["status"] = "failed";
     summary["error"] = "the eigensolver converged " + std::to_string(modes.size()) + " of the "
-                       + std::to_string(s.analysis.modes) + " modes asked for";
+                       + std::to_string(s.analysis.modes) + " modes asked for (the model has "
+                       + std::to_string(cost.dofs_with_mass) + " dofs with mass)";
   }
   return summary;
 }

@@ -129,6 +129,27 @@ void use_mumps_lu(KSP ksp)
   PCFactorSetMatSolverType(pc, MATSOLVERMUMPS);
 }
 
+/// The number of dofs with mass (M_ii > 0), over the ranks
+PetscInt dofs_with_mass(Mat M)
+{
+  Vec d;
+  MatCreateVecs(M, &d, nullptr);
+  MatGetDiagonal(M, d);
+  PetscInt n;
+  VecGetLocalSize(d, &n);
+  const PetscScalar* v;
+  VecGetArrayRead(d, &v);
+  PetscInt count = 0;
+  for (PetscInt i = 0; i < n; ++i)
+    count += v[i] > 0;
+  VecRestoreArrayRead(d, &v);
+  MPI_Comm comm;
+  PetscObjectGetComm(PetscObject(M), &comm);
+  VecDestroy(&d);
+  MPI_Allreduce(MPI_IN_PLACE, &count, 1, MPIU_INT, MPI_SUM, comm);
+  return count;
+}
+
 /// The time of one solve on a factorised KSP (s)
 double one_solve(KSP ksp, Mat K)
 {
@@ -327,11 +348,14 @@ std::vector<Mode> natural_modes(const Linearisation& lin, const AnalysisSettings
   // Krylov-Schur on the generalised non-Hermitian pencil with M singular
   // returns wrong modes (measured: 0.1 % off, or spurious ones): a
   // Hermitian pencil as SLEPc's GHEP, purified; else the condensed operator
+  // no more modes than dofs with mass: fewer are reported (and refused)
   ModalCost spent;
+  spent.dofs_with_mass = dofs_with_mass(o.M);
+  const int nev = std::min<PetscInt>(settings.modes, spent.dofs_with_mass);
   spent.hermitian = symmetric(o.K);
   const auto pairs = spent.hermitian
-                         ? hermitian_pairs(o.K, o.M, sigma, settings.modes, spent)
-                         : condensed_pairs(o.K, o.M, sigma, settings.modes, spent);
+                         ? hermitian_pairs(o.K, o.M, sigma, nev, spent)
+                         : condensed_pairs(o.K, o.M, sigma, nev, spent);
   if (cost)
     *cost = spent;
   MatCreateVecs(o.K, nullptr, &o.Mz);

@@ -44,6 +44,8 @@ struct ModalCost
   double solve_s = 0.0;
   /// The pencil was Hermitian (GHEP), else solved condensed on the dofs with mass
   bool hermitian = true;
+  /// At most as many modes as dofs with mass
+  long dofs_with_mass = 0;
 };
 
 /// The `settings.modes` modes nearest the target (ascending frequency);

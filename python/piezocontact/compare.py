@@ -54,7 +54,9 @@ VALUE_FLOOR = 1e-3
 
 def step_quantities(summary):
     """{quantity: array (steps, components)} of every compared output."""
-    steps = summary["steps"]
+    steps = summary.get("steps", [])
+    if not steps:  # an analysis about the initial state: no time loop
+        return {}
     out = {"probes.u": [[c for p in s["probes"] for c in p["u"]] for s in steps],
            "probes.phi": [[p["phi"] for p in s["probes"]] for s in steps],
            "contact_force": [s["contact_force"] for s in steps]}
@@ -74,6 +76,27 @@ def step_quantities(summary):
     return {k: np.asarray(v, float).reshape(len(steps), -1) for k, v in out.items()}
 
 
+def analysis_quantities(summary):
+    """{quantity: array} of a dynamic analysis's outputs: each mode's
+    omega^2 (a rigid mode's is round-off of 0: measured against the
+    largest), and per frequency each electrode's complex charge, potential
+    and admittance and the probes' complex u and phi ([re, im] columns).
+    The modes' charges per unit amplitude are not compared here: their sign
+    follows each engine's shape."""
+    out = {}
+    if "modes" in summary:
+        out["modes.eigenvalue"] = [[m["eigenvalue"]] for m in summary["modes"]]
+    harmonic = summary.get("harmonic", [])
+    if harmonic:
+        for name, e in harmonic[0]["electrodes"].items():
+            for key in ("charge", "potential", "admittance"):
+                if key in e:
+                    out[f"harmonic.{name}.{key}"] = [h["electrodes"][name][key] for h in harmonic]
+        out["harmonic.probes.u"] = [np.ravel([p["u"] for p in h["probes"]]) for h in harmonic]
+        out["harmonic.probes.phi"] = [np.ravel([p["phi"] for p in h["probes"]]) for h in harmonic]
+    return {k: np.asarray(v, float).reshape(len(v), -1) for k, v in out.items()}
+
+
 def agreement(run, ref):
     """{quantity: (largest |a - b| / run-wide size, largest value-by-value
     relative difference)} over every step of two runs of one config. A force
@@ -81,10 +104,12 @@ def agreement(run, ref):
     least that of the forces the supports carry (`support_force`, the sum
     of |nodal reaction|), of which its round-off is (a clamp that holds a
     body loaded only electrically has a net reaction of 1e-15 N/m)."""
-    qa, qb = step_quantities(run), step_quantities(ref)
-    if len(run["steps"]) != len(ref["steps"]) or set(qa) != set(qb):
+    qa = {**step_quantities(run), **analysis_quantities(run)}
+    qb = {**step_quantities(ref), **analysis_quantities(ref)}
+    if len(run.get("steps", [])) != len(ref.get("steps", [])) or set(qa) != set(qb) \
+            or any(qa[k].shape != qb[k].shape for k in qb):
         raise ValueError("the runs have different steps or outputs")
-    supported = max(s.get("support_force", 0.0) for s in ref["steps"])
+    supported = max((s.get("support_force", 0.0) for s in ref.get("steps", [])), default=0.0)
     # an electrode quantity is measured against the largest of its kind
     # (an open circuit's charge is zero to the round-off of the others')
     kind = {key: key.rsplit(".", 1)[1].replace("reaction_charge", "charge")

@@ -20,8 +20,8 @@ import math
 import numpy as np
 import pytest
 from conftest import run_solver
-from resonators import (T, VD, admittance, layer, on_foundation, on_rigid_plane, open_circuit,
-                        root, short_circuit)
+from resonators import (VD, T, W, admittance, layer, on_foundation, on_rigid_plane,
+                        open_circuit, root, short_circuit)
 
 
 def modes(tmp_path, cfg, engine="cpp"):
@@ -117,3 +117,36 @@ def test_modes_on_a_rigid_plane_by_nitsche(tmp_path):
     assert summary["steps"][-1]["contacts"]["bottom"]["force"][1] > 0
     assert abs(f[0] / exact[0] - 1) < 1e-5
     assert np.allclose(f, exact, rtol=1e-4, atol=0)
+
+
+def test_fewer_modes_than_asked(tmp_path):
+    """More modes than the model has: the ones found are kept in the
+    summary, one line says how many, exit 3."""
+    cfg = layer("short", 1, T / 4, {"modal": {"modes": 1000}})
+    path = tmp_path / "layer.json"
+    path.write_text(json.dumps(cfg))
+    summary, proc = run_solver("cpp", tmp_path / "out", config=path, check=False)
+    errors = [line for line in proc.stderr.splitlines() if line.startswith("error: ")]
+    assert proc.returncode == 3 and len(errors) == 1, proc.stderr
+    assert "the eigensolver converged" in errors[0] and "of the 1000 modes asked for" in errors[0]
+    assert summary["status"] == "failed" and 0 < len(summary["modes"]) < 1000
+
+
+def test_thickness_resonator_in_3d(tmp_path):
+    """The same layer in 3D: a column 0.1 x 0.1 x 1 mm poled along z, its
+    four lateral faces on rollers, P2: the first short-circuit modes
+    within 1e-5."""
+    cfg = layer("short", 2, None, {"modal": {"modes": 3}})
+    cfg["mesh"] = {"type": "box", "n": [1, 1, 30], "size": [W, W, T]}
+    cfg["material"]["poling"] = [0.0, 0.0, 1.0]
+    del cfg["formulation"]
+    cfg["boundaries"] = {"left": {"displacement": [0.0, None, None]},
+                         "right": {"displacement": [0.0, None, None]},
+                         "bottom": {"displacement": [None, 0.0, None]},
+                         "top": {"displacement": [None, 0.0, None]},
+                         "back": {"potential": 0.0}, "front": {"potential": 0.0}}
+    f, _ = modes(tmp_path, cfg)
+    exact = short_circuit(2)
+    print(f, exact)
+    assert abs(f[0]) < 1e-4 * exact[0]
+    assert np.allclose(f[1:], exact, rtol=1e-5, atol=0)
