@@ -112,3 +112,51 @@ def full_admittance_mmho(summary):
     model is undamped: Y is i B; the manual's Y is B, signed)."""
     return {h["frequency"]: 1e3 * h["electrodes"]["electrode"]["admittance"][1] / 2
             for h in summary["harmonic"]}
+
+
+def vm176_figure(path, build, points=181):
+    """The admittance over 15-60 kHz against the published points (a
+    figure: `python3 tests/ansys_vm.py --figure docs/figures/vm176_admittance.png`)."""
+    import json
+    import os
+    import subprocess
+    import tempfile
+    from pathlib import Path
+
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    root = Path(__file__).resolve().parents[1]
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    with tempfile.TemporaryDirectory() as tmp:
+        msh = Path(tmp) / "langevin.msh"
+        subprocess.run(["/usr/bin/python3", str(root / "meshes" / "langevin_msh.py"), "--size",
+                        "0.5e-3", "--output", str(msh)], check=True, capture_output=True)
+        cfg = vm176(msh, list(np.linspace(15e3, 60e3, points)))
+        (Path(tmp) / "vm176.json").write_text(json.dumps(cfg))
+        subprocess.run([str(Path(build) / "piezo-contact"), "--config", str(Path(tmp) / "vm176.json"),
+                        "--output", str(Path(tmp) / "out"), "--quiet"], check=True, env=env)
+        Y = full_admittance_mmho(json.loads((Path(tmp) / "out" / "summary.json").read_text()))
+    f = np.array(sorted(Y))
+    fig, ax = plt.subplots(figsize=(7, 4))
+    ax.semilogy(f / 1e3, np.abs([Y[x] for x in f]), label="here (axisymmetric P2)")
+    for table, mark, name in ((VM176_TARGET, "ko", "Kagawa & Yamabuchi (the manual's target)"),
+                              (VM176_ANSYS_REL9, "rs", "ANSYS Rel. 9.0")):
+        pts = [(k, abs(v)) for k, v in table.items() if v is not None]
+        ax.plot([p[0] / 1e3 for p in pts], [p[1] for p in pts], mark, mfc="none", label=name)
+    ax.set(xlabel="frequency (kHz)", ylabel="|Y| (mmho)",
+           title="VM176: the sandwich transducer's input admittance, 1 V, undamped")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=130)
+    print(f"wrote {path}")
+
+
+if __name__ == "__main__":
+    import argparse
+    from pathlib import Path
+    ap = argparse.ArgumentParser(description="the VM176 admittance figure")
+    ap.add_argument("--figure", required=True)
+    ap.add_argument("--build", default=str(Path(__file__).resolve().parents[1] / "build"))
+    args = ap.parse_args()
+    vm176_figure(args.figure, args.build)

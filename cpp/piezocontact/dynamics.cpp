@@ -82,6 +82,7 @@ json modal(Problem& p, const RunSettings& s, const fs::path& dir, json summary,
       {"eigensolver_s", cost.eigensolver_s},
       {"solves", cost.solves},
       {"one_solve_s", cost.solve_s},
+      {"factor_entries", cost.factor_entries},
       {"pencil", cost.hermitian ? "hermitian" : "condensed"},
       {"total_s", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()}};
   json list = json::array();

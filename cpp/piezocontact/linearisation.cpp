@@ -19,14 +19,14 @@ void check(PetscErrorCode ierr, const char* what)
     throw std::runtime_error(std::string("PETSc failed in ") + what);
 }
 
-/// A matrix of the sum of some forms on the sparsity of all three lists
-/// (K's holds C's and M's: one pattern, MatAXPY without a new one)
-la::petsc::Matrix assembled(const FormList& terms, const FormList& pattern,
-                            const compat::FunctionSpace& W)
+/// A matrix of the sum of some forms, on a copy of `pattern`'s sparsity
+/// (K's holds C's and M's: one pattern, built once)
+la::petsc::Matrix assembled(const FormList& terms, Mat pattern, const compat::FunctionSpace& W)
 {
-  la::petsc::Matrix A(create_matrix(pattern, W), false);
-  assemble_into(A.mat(), terms, {}, W);
-  return A;
+  Mat A;
+  MatDuplicate(pattern, MAT_DO_NOT_COPY_VALUES, &A);
+  assemble_into(A, terms, {}, W);
+  return la::petsc::Matrix(A, false);
 }
 
 FormList all_forms(const Model& m)
@@ -45,10 +45,10 @@ Linearisation::Linearisation(Problem& p)
     throw std::logic_error("the model has no linearisation (ModelSpec::linearised)");
   std::fill(p.model.x_dot->x()->mutable_array().begin(),
             p.model.x_dot->x()->mutable_array().end(), 0.0); // the state at rest
-  const FormList pattern = all_forms(p.model);
-  _K = assembled(p.model.K, pattern, *p.W);
-  _C = assembled(p.model.C, pattern, *p.W);
-  _M = assembled(p.model.M, pattern, *p.W);
+  la::petsc::Matrix pattern(create_matrix(all_forms(p.model), *p.W), false);
+  _K = assembled(p.model.K, pattern.mat(), *p.W);
+  _C = assembled(p.model.C, pattern.mat(), *p.W);
+  _M = assembled(p.model.M, pattern.mat(), *p.W);
   check(MatCreateVecs(_K.mat(), &_sign, nullptr), "MatCreateVecs");
   PetscInt r0 = 0, r1 = 0;
   MatGetOwnershipRange(_K.mat(), &r0, &r1);

@@ -150,6 +150,20 @@ PetscInt dofs_with_mass(Mat M)
   return count;
 }
 
+/// The entries of a KSP's MUMPS factors (0 if not MUMPS)
+double factor_entries(KSP ksp)
+{
+  PC pc;
+  KSPGetPC(ksp, &pc);
+  Mat F;
+  if (PCFactorGetMatrix(pc, &F) != 0)
+    return 0.0;
+  PetscInt entries = 0;
+  if (MatMumpsGetInfog(F, 29, &entries) != 0)
+    return 0.0;
+  return entries < 0 ? -1e6 * entries : entries; // MUMPS: negative means millions
+}
+
 /// The time of one solve on a factorised KSP (s)
 double one_solve(KSP ksp, Mat K)
 {
@@ -196,6 +210,7 @@ std::vector<Pair> hermitian_pairs(Mat K, Mat M, double sigma, int nev, ModalCost
   KSPGetTotalIterations(ksp, &solves); // preonly: one per solve
   cost.solves = solves;
   cost.solve_s = one_solve(ksp, K);
+  cost.factor_entries = factor_entries(ksp);
   std::vector<Pair> out;
   PetscInt converged = 0;
   if (ierr == 0)
@@ -299,6 +314,7 @@ std::vector<Pair> condensed_pairs(Mat K, Mat M, double sigma, int nev, ModalCost
   cost.eigensolver_s = std::chrono::duration<double>(t2 - t1).count();
   cost.solves = c.solves;
   cost.solve_s = one_solve(c.ksp, K);
+  cost.factor_entries = factor_entries(c.ksp);
   std::vector<Pair> out;
   PetscInt converged = 0;
   if (ierr == 0)

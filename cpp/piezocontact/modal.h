@@ -46,6 +46,8 @@ struct ModalCost
   bool hermitian = true;
   /// At most as many modes as dofs with mass
   long dofs_with_mass = 0;
+  /// Entries of the LU factors (MUMPS' INFOG(29)): a solve reads them twice
+  double factor_entries = 0.0;
 };
 
 /// The `settings.modes` modes nearest the target (ascending frequency);

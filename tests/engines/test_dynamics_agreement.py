@@ -108,3 +108,16 @@ def test_engines_agree_on_admittance(tmp_path):
             for key in ("charge", "admittance"):
                 x, y = (complex(*s["electrodes"]["top"][key]) for s in (a, b))
                 assert abs(x - y) <= 1e-9 * abs(x), (e, key, x, y)
+
+
+def test_admittance_under_mpi(tmp_path):
+    """mpirun -n 2 gives the serial admittance (the block system's rows
+    interleaved per dof across the ranks)."""
+    fr = short_circuit(1)[0]
+    cfg = layer("short", 2, T / 10, {"harmonic": {"frequencies": [0.5 * fr, fr]}})
+    cfg["boundaries"]["top"] = {"potential": 1.0}
+    serial = run_all(tmp_path, cfg, ("cpp",))["cpp"]["harmonic"]
+    parallel = run_all(tmp_path, cfg, ("cpp",), np_=2)["cpp"]["harmonic"]
+    for a, b in zip(serial, parallel):
+        x, y = (complex(*s["electrodes"]["top"]["admittance"]) for s in (a, b))
+        assert abs(x - y) <= 1e-9 * abs(x), (x, y)
