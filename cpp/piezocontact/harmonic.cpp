@@ -1,6 +1,7 @@
 #include "harmonic.h"
 #include "config.h"
 #include "linear_solver.h"
+#include "matrices.h"
 
 #include <chrono>
 #include <cmath>
@@ -12,17 +13,6 @@ namespace piezocontact
 {
 namespace
 {
-std::vector<double> owned_entries(Vec x)
-{
-  const PetscScalar* v;
-  PetscInt n;
-  VecGetLocalSize(x, &n);
-  VecGetArrayRead(x, &v);
-  std::vector<double> out(v, v + n);
-  VecRestoreArrayRead(x, &v);
-  return out;
-}
-
 /// Entries of a vector at some global indices (owned) set to a value, or
 /// to another vector's
 void set_at(Vec b, const std::vector<PetscInt>& rows, Vec from)

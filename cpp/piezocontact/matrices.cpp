@@ -36,4 +36,15 @@ void assemble_into(Mat M, const FormList& terms,
   MatAssemblyBegin(M, MAT_FINAL_ASSEMBLY);
   MatAssemblyEnd(M, MAT_FINAL_ASSEMBLY);
 }
+
+std::vector<double> owned_entries(Vec x)
+{
+  const PetscScalar* v;
+  PetscInt n;
+  VecGetLocalSize(x, &n);
+  VecGetArrayRead(x, &v);
+  std::vector<double> out(v, v + n);
+  VecRestoreArrayRead(x, &v);
+  return out;
+}
 } // namespace piezocontact

@@ -8,6 +8,7 @@
 #include <dolfinx/fem/DirichletBC.h>
 #include <memory>
 #include <petscmat.h>
+#include <petscvec.h>
 #include <vector>
 
 namespace piezocontact
@@ -21,4 +22,7 @@ Mat create_matrix(const FormList& terms, const compat::FunctionSpace& V);
 void assemble_into(Mat M, const FormList& terms,
                    const std::vector<std::shared_ptr<const dolfinx::fem::DirichletBC<double>>>& bcs,
                    const compat::FunctionSpace& V);
+
+/// This rank's entries of a PETSc vector
+std::vector<double> owned_entries(Vec x);
 } // namespace piezocontact

@@ -1,8 +1,10 @@
 #include "modal.h"
+#include "matrices.h"
 
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <functional>
 #include <cmath>
 #include <numbers>
 #include <slepceps.h>
@@ -80,12 +82,7 @@ double diagonal_ratio(Mat K, Mat M)
 /// The owned entries of x with its largest entry made positive
 std::vector<double> signed_entries(Vec x)
 {
-  const PetscScalar* v;
-  PetscInt n;
-  VecGetLocalSize(x, &n);
-  VecGetArrayRead(x, &v);
-  std::vector<double> out(v, v + n);
-  VecRestoreArrayRead(x, &v);
+  std::vector<double> out = owned_entries(x);
   std::array<double, 2> local = {0.0, 0.0}; // |largest|, its sign
   for (double a : out)
     if (std::abs(a) > local[0])
@@ -178,6 +175,22 @@ double one_solve(KSP ksp, Mat K)
   return std::chrono::duration<double>(t1 - t0).count();
 }
 
+/// `factorise` (the LU of K - sigma M), then the eigensolver, each timed
+/// into `cost`; the first error code
+PetscErrorCode timed_solve(const std::function<PetscErrorCode()>& factorise, EPS eps,
+                           ModalCost& cost)
+{
+  const auto t0 = std::chrono::steady_clock::now();
+  PetscErrorCode ierr = factorise();
+  const auto t1 = std::chrono::steady_clock::now();
+  if (ierr == 0)
+    ierr = EPSSolve(eps);
+  const auto t2 = std::chrono::steady_clock::now();
+  cost.factorisation_s = std::chrono::duration<double>(t1 - t0).count();
+  cost.eigensolver_s = std::chrono::duration<double>(t2 - t1).count();
+  return ierr;
+}
+
 /// The Hermitian pencil: SLEPc's generalised problem, shift-and-invert
 std::vector<Pair> hermitian_pairs(Mat K, Mat M, double sigma, int nev, ModalCost& cost)
 {
@@ -198,14 +211,7 @@ std::vector<Pair> hermitian_pairs(Mat K, Mat M, double sigma, int nev, ModalCost
   KSP ksp;
   STGetKSP(st, &ksp);
   use_mumps_lu(ksp);
-  auto t0 = std::chrono::steady_clock::now();
-  PetscErrorCode ierr = EPSSetUp(eps); // the LU of K - sigma M
-  auto t1 = std::chrono::steady_clock::now();
-  if (ierr == 0)
-    ierr = EPSSolve(eps);
-  auto t2 = std::chrono::steady_clock::now();
-  cost.factorisation_s = std::chrono::duration<double>(t1 - t0).count();
-  cost.eigensolver_s = std::chrono::duration<double>(t2 - t1).count();
+  const PetscErrorCode ierr = timed_solve([&] { return EPSSetUp(eps); }, eps, cost);
   PetscInt solves = 0;
   KSPGetTotalIterations(ksp, &solves); // preonly: one per solve
   cost.solves = solves;
@@ -304,14 +310,7 @@ std::vector<Pair> condensed_pairs(Mat K, Mat M, double sigma, int nev, ModalCost
   EPSSetDimensions(eps, nev, PETSC_DEFAULT, PETSC_DEFAULT);
   EPSSetWhichEigenpairs(eps, EPS_LARGEST_MAGNITUDE);
   EPSSetTolerances(eps, 1e-12, 500);
-  auto t0 = std::chrono::steady_clock::now();
-  PetscErrorCode ierr = KSPSetUp(c.ksp); // the LU of K - sigma M
-  auto t1 = std::chrono::steady_clock::now();
-  if (ierr == 0)
-    ierr = EPSSolve(eps);
-  auto t2 = std::chrono::steady_clock::now();
-  cost.factorisation_s = std::chrono::duration<double>(t1 - t0).count();
-  cost.eigensolver_s = std::chrono::duration<double>(t2 - t1).count();
+  const PetscErrorCode ierr = timed_solve([&] { return KSPSetUp(c.ksp); }, eps, cost);
   cost.solves = c.solves;
   cost.solve_s = one_solve(c.ksp, K);
   cost.factor_entries = factor_entries(c.ksp);
