@@ -1,6 +1,7 @@
 #include "dynamics.h"
 #include "diagnostics.h"
 #include "harmonic.h"
+#include "linear_solver.h"
 #include "linearisation.h"
 #include "modal.h"
 #include "output.h"
@@ -238,7 +239,15 @@ json harmonic(Problem& p, const RunSettings& s, const fs::path& dir, json summar
   json list = json::array();
   for (double f : s.analysis.frequencies)
   {
-    const auto& h = responses.emplace_back(solver.solve(f));
+    try
+    {
+      responses.push_back(solver.solve(f));
+    }
+    catch (const LinearSolveFailure& e) // singular: one line, exit 3, not a crash
+    {
+      throw AnalysisFailure(e.what());
+    }
+    const auto& h = responses.back();
     list.push_back({{"frequency", f},
                     {"electrodes", electrodes_json(p, h, driven)},
                     {"probes", probes_json(p, probes, h)}});
