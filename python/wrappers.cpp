@@ -226,6 +226,7 @@ void declare_settings(py::module_& m)
       .def_ro("steps", &RunSettings::steps)
       .def_ro("newton", &RunSettings::newton)
       .def_ro("reuse_factorisation", &RunSettings::reuse_factorisation)
+      .def_ro("symmetric", &RunSettings::symmetric)
       .def_prop_ro("linear", [](const RunSettings& s) -> std::string
                    { return s.linear == LinearSolver::iterative ? "iterative" : "direct"; })
       .def_ro("petsc_options", &RunSettings::petsc_options)

@@ -5,6 +5,9 @@
 # out/build-REV), every step record (all but its timing) compared bit for
 # bit.
 #   bash scripts/compare_builds.sh REV [KEY.PATH=VALUE ...]   # extra --set for both
+# NEW_SET="KEY.PATH=VALUE ..." adds --set to this tree's runs only (a key REV
+# does not know); TOLERANCE=1e-12 compares within that (relative to each
+# field's largest value) instead of bit for bit.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 rev=$(git rev-parse --short "$1"); shift
@@ -35,11 +38,14 @@ while read -r config sets; do
   for s in $sets "$@"; do args+=(--set "$s"); done
   for b in old new; do
     exe=$([ $b = old ] && echo "$old/piezo-contact" || echo build/piezo-contact)
+    extra=()
+    if [ $b = new ]; then for s in ${NEW_SET:-}; do extra+=(--set "$s"); done; fi
     rm -rf "out/compare-$b/$config"
-    "$exe" "${args[@]}" --output "out/compare-$b/$config"
+    "$exe" "${args[@]}" "${extra[@]}" --output "out/compare-$b/$config"
   done
   printf '%-28s ' "$config"
   /usr/bin/python3 tests/compare_summaries.py "out/compare-old/$config/summary.json" \
-    "out/compare-new/$config/summary.json" --identical || status=1
+    "out/compare-new/$config/summary.json" \
+    $([ -n "${TOLERANCE:-}" ] && echo "--tolerance $TOLERANCE" || echo --identical) || status=1
 done <<< "$sizes"
 exit $status

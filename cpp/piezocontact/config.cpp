@@ -1286,6 +1286,7 @@ RunSettings run_settings(const json& cfg)
   s.reuse_factorisation = cfg["solver"]["reuse_factorisation"].get<bool>();
   s.linear = cfg["solver"]["linear"].get<std::string>() == "iterative" ? LinearSolver::iterative
                                                                        : LinearSolver::direct;
+  s.symmetric = cfg["solver"]["symmetric"].get<std::string>() == "auto";
   for (const auto& [key, value] : cfg["solver"]["petsc_options"].items())
     s.petsc_options.emplace_back(key, value.is_string() ? value.get<std::string>()
                                                         : value.dump()); // numbers, bools

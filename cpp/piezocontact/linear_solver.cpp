@@ -35,27 +35,29 @@ std::vector<KSP> sub_ksps(PC pc)
 }
 } // namespace
 
-LinearSolverSetup::LinearSolverSetup(KSP ksp, const Problem& p, LinearSolver kind)
-    : _ksp(ksp), _kind(kind), _comm(p.comm), _dim(p.dim())
+LinearSolverSetup::LinearSolverSetup(KSP ksp, const Problem& p, LinearSolver kind,
+                                     bool symmetric)
+    : _ksp(ksp), _kind(kind), _comm(p.comm), _dim(p.dim()),
+      _symmetric(symmetric and kind == LinearSolver::direct)
 {
   make_splits(p);
+  if (_symmetric)
+    make_signs(p);
+  KSPSetPreSolve(_ksp, &LinearSolverSetup::pre_solve, this);
+  KSPSetPostSolve(_ksp, &LinearSolverSetup::post_solve, this);
   if (!iterative())
     return;
   // The user's (or our default) relative tolerance and iteration limit stay;
   // the absolute one is set per solve
   PetscReal atol, dtol;
   KSPGetTolerances(_ksp, &_rtol, &atol, &dtol, &_max_it);
-  KSPSetPreSolve(_ksp, &LinearSolverSetup::pre_solve, this);
-  KSPSetPostSolve(_ksp, &LinearSolverSetup::post_solve, this);
 }
 
 LinearSolverSetup::~LinearSolverSetup()
 {
-  if (iterative())
-  {
-    KSPSetPreSolve(_ksp, nullptr, nullptr);
-    KSPSetPostSolve(_ksp, nullptr, nullptr);
-  }
+  KSPSetPreSolve(_ksp, nullptr, nullptr);
+  KSPSetPostSolve(_ksp, nullptr, nullptr);
+  VecDestroy(&_sign);
   VecDestroy(&_s);
   VecDestroy(&_b_saved);
   ISDestroy(&_is_u);
@@ -138,8 +140,86 @@ void LinearSolverSetup::scale(Mat M)
   MatDiagonalScale(M, _s, _s);
 }
 
+void LinearSolverSetup::make_signs(const Problem& p)
+{
+  const auto& imap = *p.W->dofmap()->index_map;
+  const PetscInt owned = imap.size_local() * p.W->dofmap()->index_map_bs();
+  VecCreateMPI(_comm, owned, PETSC_DETERMINE, &_sign);
+  VecSet(_sign, 1.0);
+  PetscScalar* a;
+  VecGetArray(_sign, &a);
+  for (auto w : p.phi_dofs)
+    if (w < owned)
+      a[w] = -1.0;
+  VecRestoreArray(_sign, &a);
+}
+
+double LinearSolverSetup::asymmetry(Mat M) const
+{
+  Mat B, T;
+  MatDuplicate(M, MAT_COPY_VALUES, &B);
+  MatDiagonalScale(B, _sign, nullptr);
+  Vec s;
+  MatCreateVecs(B, &s, nullptr);
+  MatGetDiagonal(B, s);
+  PetscInt n;
+  VecGetLocalSize(s, &n);
+  PetscScalar* a;
+  VecGetArray(s, &a);
+  for (PetscInt i = 0; i < n; ++i)
+    a[i] = a[i] != 0.0 ? 1.0 / std::sqrt(std::abs(a[i])) : 1.0;
+  VecRestoreArray(s, &a);
+  MatDiagonalScale(B, s, s);
+  MatTranspose(B, MAT_INITIAL_MATRIX, &T);
+  // B's pattern is symmetric (one mixed space for test and trial), but the
+  // transpose's storage need not match it entry for entry
+  MatAXPY(T, -1.0, B, DIFFERENT_NONZERO_PATTERN);
+  PetscReal defect = 0.0;
+  MatNorm(T, NORM_MAX, &defect);
+  MatDestroy(&T);
+  MatDestroy(&B);
+  VecDestroy(&s);
+  return defect;
+}
+
+void LinearSolverSetup::choose_factorisation(Mat M)
+{
+  const double defect = asymmetry(M);
+  symmetry_defect = std::max(symmetry_defect, defect);
+  _negated = defect <= symmetry_tolerance;
+  if (_negated)
+  {
+    MatDiagonalScale(M, _sign, nullptr);
+    MatSetOption(M, MAT_SYMMETRIC, PETSC_TRUE);
+  }
+  PC pc;
+  KSPGetPC(_ksp, &pc);
+  const PCType wanted = _negated ? PCCHOLESKY : PCLU;
+  if (!is_type(pc, wanted))
+  {
+    PCSetType(pc, wanted);
+#if PETSC_HAVE_MUMPS
+    PCFactorSetMatSolverType(pc, MATSOLVERMUMPS);
+#endif
+  }
+  ++(_negated ? ldlt : lu);
+}
+
+std::string LinearSolverSetup::factorisations() const
+{
+  if (iterative())
+    return "";
+  if (ldlt > 0 and lu > 0)
+    return "LDLT and LU";
+  return ldlt > 0 ? "LDLT" : "LU";
+}
+
 bool LinearSolverSetup::operator_changed(Mat M, bool k_changed)
 {
+  if (_symmetric)
+    choose_factorisation(M);
+  else if (!iterative())
+    ++lu;
   if (iterative())
     scale(M);
   const bool lag = iterative() and setups > 0 and !k_changed and !_stale;
@@ -152,10 +232,32 @@ bool LinearSolverSetup::operator_changed(Mat M, bool k_changed)
     return false;
   }
   ++setups;
+  record_factor_entries();
   _best_rate = std::numeric_limits<double>::infinity();
   _stale = false;
   set_up_blocks();
   return true;
+}
+
+void LinearSolverSetup::record_factor_entries()
+{
+  PC pc;
+  KSPGetPC(_ksp, &pc);
+  factor_entries = 0.0;
+#if PETSC_HAVE_MUMPS
+  if (!is_type(pc, PCLU) and !is_type(pc, PCCHOLESKY))
+    return;
+  Mat F = nullptr;
+  PCFactorGetMatrix(pc, &F);
+  MatSolverType package = nullptr;
+  MatFactorGetSolverType(F, &package);
+  PetscBool mumps = PETSC_FALSE;
+  PetscStrcmp(package, MATSOLVERMUMPS, &mumps);
+  PetscInt entries = 0;
+  if (mumps)
+    MatMumpsGetInfog(F, 29, &entries); // negative: millions (MUMPS' users' guide)
+  factor_entries = entries < 0 ? -1e6 * double(entries) : double(entries);
+#endif
 }
 
 // The near null space goes on the u block's own matrix, which exists once
@@ -314,6 +416,7 @@ void LinearSolverSetup::factorisation_failed(const std::string& what) const
   PC pc;
   KSPGetPC(_ksp, &pc);
   char text[400];
+  const char* kind = is_type(pc, PCCHOLESKY) ? "LDL^T" : "LU";
   if (!is_type(pc, PCLU) and !is_type(pc, PCCHOLESKY))
   {
     std::snprintf(text, sizeof(text), "the preconditioner failed (%s)", what.c_str());
@@ -336,9 +439,9 @@ void LinearSolverSetup::factorisation_failed(const std::string& what) const
   {
     // its workspace estimate was too small: more slack usually cures it
     std::snprintf(text, sizeof(text),
-                  "the LU factorisation failed (%s): MUMPS INFOG(1) = %d, its workspace "
+                  "the %s factorisation failed (%s): MUMPS INFOG(1) = %d, its workspace "
                   "estimate was too small",
-                  what.c_str(), int(info));
+                  kind, what.c_str(), int(info));
     throw LinearSolveFailure(text, false,
                              "raise solver.petsc_options.mat_mumps_icntl_14 (percent of slack, "
                              "default 20), or use solver.linear = \"iterative\"");
@@ -346,11 +449,12 @@ void LinearSolverSetup::factorisation_failed(const std::string& what) const
 #endif
   if (error == MAT_FACTOR_OUTMEMORY)
   {
-    std::snprintf(text, sizeof(text), "the LU factorisation ran out of memory (%s)", what.c_str());
+    std::snprintf(text, sizeof(text), "the %s factorisation ran out of memory (%s)", kind,
+                  what.c_str());
     throw LinearSolveFailure(text, false,
                              "solver.linear = \"iterative\" needs a fraction of the memory");
   }
-  std::snprintf(text, sizeof(text), "the LU factorisation failed (%s, %s)", what.c_str(),
+  std::snprintf(text, sizeof(text), "the %s factorisation failed (%s, %s)", kind, what.c_str(),
                 error == MAT_FACTOR_NUMERIC_ZEROPIVOT ? "zero pivot" : "PC failed");
   throw LinearSolveFailure(text, true);
 }
@@ -360,9 +464,15 @@ void LinearSolverSetup::factorisation_failed(const std::string& what) const
 PetscErrorCode LinearSolverSetup::pre_solve(KSP ksp, Vec b, Vec x, void* ctx)
 {
   auto* self = static_cast<LinearSolverSetup*>(ctx);
+  if (!self->_negated and !self->iterative())
+    return 0;
   if (!self->_b_saved)
     PetscCall(VecDuplicate(b, &self->_b_saved));
   PetscCall(VecCopy(b, self->_b_saved));
+  if (self->_negated)
+    PetscCall(VecPointwiseMult(b, b, self->_sign));
+  if (!self->iterative())
+    return 0;
   PetscCall(VecPointwiseMult(b, b, self->_s));
   PetscReal norm;
   PetscCall(VecNorm(b, NORM_2, &norm));
@@ -377,7 +487,10 @@ PetscErrorCode LinearSolverSetup::pre_solve(KSP ksp, Vec b, Vec x, void* ctx)
 PetscErrorCode LinearSolverSetup::post_solve(KSP, Vec b, Vec x, void* ctx)
 {
   auto* self = static_cast<LinearSolverSetup*>(ctx);
-  PetscCall(VecPointwiseMult(x, x, self->_s));
+  if (!self->_negated and !self->iterative())
+    return 0;
+  if (self->iterative())
+    PetscCall(VecPointwiseMult(x, x, self->_s));
   return VecCopy(self->_b_saved, b);
 }
 } // namespace piezocontact

@@ -5,6 +5,17 @@
 // (dolfinx's KrylovSolver ignores a failed solve; here a failed LU or
 // Krylov solve is an exception the time loop handles).
 //
+// The symmetric form (docs/solvers.md): J = [[K, C], [-C^T, beta]] of the
+// paper's problem is symmetric once its electric rows are negated, D J with
+// D = diag(1 on u, -1 on phi). At each factorisation D J is checked (its
+// Jacobi-scaled entries symmetric to round-off); if it is, the KSP solves
+// D J dx = D b with MUMPS' LDL^T (SYM = 2: half the factor entries, half
+// the bytes each triangular solve reads), otherwise J dx = b with its LU.
+// The hooks around every KSPSolve apply D to b (and restore b after), so
+// the Newton step, the floating electrodes' responses and the residual the
+// loop reads are those of J. A user's term that breaks the symmetry (a
+// contact law or residual of theirs) falls back to LU at that factorisation.
+//
 // The iterative solver (solver.linear = "iterative"; docs/solvers.md):
 //  * Jacobi scaling as a change of variables: J is scaled in place to
 //    S J S, S = |diag J|^-1/2 (the variables of the fieldwise Newton test,
@@ -57,8 +68,10 @@ public:
 class LinearSolverSetup
 {
 public:
-  /// After the KSP's options were set: splits and hooks
-  LinearSolverSetup(KSP ksp, const Problem& p, LinearSolver kind);
+  /// After the KSP's options were set: splits and hooks. `symmetric`: the
+  /// direct solver may factorise D J by LDL^T when it is symmetric (the
+  /// KSP's PC is then ours to switch between LU and Cholesky)
+  LinearSolverSetup(KSP ksp, const Problem& p, LinearSolver kind, bool symmetric);
   ~LinearSolverSetup();
   LinearSolverSetup(const LinearSolverSetup&) = delete;
   LinearSolverSetup& operator=(const LinearSolverSetup&) = delete;
@@ -83,12 +96,35 @@ public:
   int check_solve(const std::string& what);
 
   int setups = 0, lagged = 0;
+  /// factorisations of D J by LDL^T and of J by LU (direct solver)
+  int ldlt = 0, lu = 0;
+  /// entries in the factors of the last factorisation (MUMPS INFOG(29); 0
+  /// for other packages)
+  double factor_entries = 0.0;
+  /// largest |a_ij - a_ji| of Jacobi-scaled D J seen at a factorisation
+  /// (entries of order 1): round-off for the paper's forms
+  double symmetry_defect = 0.0;
+  /// "LU", "LDLT" or "LDLT and LU" (direct), "" (iterative)
+  std::string factorisations() const;
+
+  /// D J counts as symmetric when its Jacobi-scaled entries are within this
+  /// of their transposes: the assembly's round-off is ~1e-16 (measured
+  /// 1e-17 to 2e-16 on the demo configs, docs/solvers.md), a user's
+  /// unsymmetric term orders of magnitude above
+  static constexpr double symmetry_tolerance = 1e-12;
 
 private:
+  /// The largest asymmetry of Jacobi-scaled D M (collective)
+  double asymmetry(Mat M) const;
+  /// Direct solver: LDL^T of D M if it is symmetric (M negated in place),
+  /// else LU of M
+  void choose_factorisation(Mat M);
+  void make_signs(const Problem& p);
   void make_splits(const Problem& p);
   void scale(Mat M);
   void attach_near_nullspace();
   void set_up_blocks();
+  void record_factor_entries();
   [[noreturn]] void factorisation_failed(const std::string& what) const;
   static PetscErrorCode pre_solve(KSP, Vec b, Vec x, void* ctx);
   static PetscErrorCode post_solve(KSP, Vec b, Vec x, void* ctx);
@@ -98,7 +134,10 @@ private:
   MPI_Comm _comm;
   IS _is_u = nullptr, _is_phi = nullptr;
   Vec _s = nullptr; ///< |diag J|^-1/2 (1 where the diagonal is 0)
+  Vec _sign = nullptr;   ///< D: 1 on u dofs, -1 on phi dofs
+  bool _negated = false; ///< the operator in the KSP is D J
   int _dim;
+  bool _symmetric; ///< LDL^T allowed
   /// coordinates of the owned u nodes, in the u split's order (x, y, z each)
   std::vector<double> _node_x;
   Vec _b_saved = nullptr; ///< the caller's right-hand side, restored exactly

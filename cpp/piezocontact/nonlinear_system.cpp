@@ -72,10 +72,10 @@ std::optional<la::petsc::Matrix> unconstrained_jacobian(const Problem& p)
 } // namespace
 
 NonlinearSystem::NonlinearSystem(Problem& p, FieldwiseConvergence& monitor, KSP ksp,
-                                 bool reuse_lu, LinearSolver linear_solver)
+                                 bool reuse_lu, LinearSolver linear_solver, bool symmetric)
     : b(la::petsc::create_vector(*p.W->dofmap()->index_map, p.W->dofmap()->index_map_bs()),
         false),
-      A(create_matrix(p.model.J, *p.W), false), linear(ksp, p, linear_solver),
+      A(create_matrix(p.model.J, *p.W), false), linear(ksp, p, linear_solver, symmetric),
       floating(p, unconstrained_jacobian(p)), _p(p), _monitor(monitor), _ksp(ksp), _reuse(reuse_lu),
       _Jc(create_matrix(p.model.J_contact, *p.W), false)
 {

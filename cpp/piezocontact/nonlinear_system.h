@@ -30,8 +30,10 @@ class NonlinearSystem
 {
 public:
   /// After the KSP's options were set
+  /// `symmetric`: LDL^T of the Jacobian with its electric rows negated
+  /// whenever that is symmetric (linear_solver.h)
   NonlinearSystem(Problem& p, FieldwiseConvergence& monitor, KSP ksp, bool reuse_lu,
-                  LinearSolver linear);
+                  LinearSolver linear, bool symmetric);
 
   void F(const Vec x, Vec r);
   void J(const Vec x, Mat M);

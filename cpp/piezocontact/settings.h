@@ -122,6 +122,9 @@ struct RunSettings
   NewtonSettings newton;
   bool reuse_factorisation = true;
   LinearSolver linear = LinearSolver::direct;
+  /// solver.symmetric = "auto": LDL^T when the Jacobian with its electric
+  /// rows negated is symmetric (direct solver, PC not set by the user)
+  bool symmetric = true;
   /// PETSc options of the linear solver, without our prefix
   std::vector<std::pair<std::string, std::string>> petsc_options;
   std::vector<std::array<double, 3>> probes;

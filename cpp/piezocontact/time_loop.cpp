@@ -100,7 +100,10 @@ json timing(const NonlinearSystem& sys, double total_s, double newton_s,
             {"floating_electrodes", sys.floating.stats.to_json()},
             {"reused_factorisation", sys.reused},
             {"lagged_preconditioner", sys.lagged}}},
-          {"linear_solver", sys.linear.iterative() ? "iterative" : "direct"}};
+          {"linear_solver", sys.linear.iterative() ? "iterative" : "direct"},
+          {"factorisation", sys.linear.factorisations()},
+          {"factor_entries", sys.linear.factor_entries},
+          {"symmetry_defect", sys.linear.symmetry_defect}};
 }
 
 /// The backward Euler loop of one run: configure the solver, then per step
@@ -171,6 +174,15 @@ private:
     return options;
   }
 
+  /// LDL^T is ours to choose unless the user chose the factorisation
+  static bool symmetric_allowed(const RunSettings& settings)
+  {
+    for (const auto& [key, value] : settings.petsc_options)
+      if (key == "pc_type" or key == "pc_factor_mat_solver_type" or key == "ksp_type")
+        return false;
+    return settings.symmetric and settings.linear == LinearSolver::direct;
+  }
+
   /// The Newton solver's KSP under our prefix, and the system on it
   static std::unique_ptr<NonlinearSystem> configured(nls::petsc::NewtonSolver& newton,
                                                      Problem& problem,
@@ -180,7 +192,8 @@ private:
     newton.get_krylov_solver().set_options_prefix(petsc_prefix);
     newton.get_krylov_solver().set_from_options();
     return std::make_unique<NonlinearSystem>(problem, monitor, newton.get_krylov_solver().ksp(),
-                                             settings.reuse_factorisation, settings.linear);
+                                             settings.reuse_factorisation, settings.linear,
+                                             symmetric_allowed(settings));
   }
 
   void set_callbacks()
