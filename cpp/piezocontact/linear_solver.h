@@ -101,25 +101,25 @@ public:
   /// entries in the factors of the last factorisation (MUMPS INFOG(29); 0
   /// for other packages)
   double factor_entries = 0.0;
-  /// largest |a_ij - a_ji| of Jacobi-scaled D J seen at a factorisation
-  /// (entries of order 1): round-off for the paper's forms
+  /// the fill-reducing ordering MUMPS used (its INFOG(7)), "" for others
+  std::string factor_ordering;
+  /// LDL^T refactorised with pivoting, D J not being quasi-definite
+  bool pivoting() const { return _pivoting; }
+  /// largest scaled asymmetry of D J seen at a factorisation (matrices.h:
+  /// LDL^T at most symmetry_tolerance): round-off for the paper's forms
   double symmetry_defect = 0.0;
   /// "LU", "LDLT" or "LDLT and LU" (direct), "" (iterative)
   std::string factorisations() const;
 
-  /// D J counts as symmetric when its Jacobi-scaled entries are within this
-  /// of their transposes: the assembly's round-off is ~1e-16 (measured
-  /// 1e-17 to 2e-16 on the demo configs, docs/solvers.md), a user's
-  /// unsymmetric term orders of magnitude above
-  static constexpr double symmetry_tolerance = 1e-12;
-
 private:
-  /// The largest asymmetry of Jacobi-scaled D M (collective)
-  double asymmetry(Mat M) const;
   /// Direct solver: LDL^T of D M if it is symmetric (M negated in place),
   /// else LU of M
   void choose_factorisation(Mat M);
   void make_signs(const Problem& p);
+  /// KSPSetUp of D J by LDL^T without pivoting, checked by its inertia
+  /// (with pivoting if that fails)
+  void factorise_quasi_definite();
+  Mat mumps_factor(PC pc) const;
   void make_splits(const Problem& p);
   void scale(Mat M);
   void attach_near_nullspace();
@@ -136,6 +136,9 @@ private:
   Vec _s = nullptr; ///< |diag J|^-1/2 (1 where the diagonal is 0)
   Vec _sign = nullptr;   ///< D: 1 on u dofs, -1 on phi dofs
   bool _negated = false; ///< the operator in the KSP is D J
+  bool _pivoting = false; ///< D J was not quasi-definite: LDL^T with pivoting
+  PetscInt _phi_rows = 0; ///< global: the negative pivots of quasi-definite D J
+  Mat _operator = nullptr;
   int _dim;
   bool _symmetric; ///< LDL^T allowed
   /// coordinates of the owned u nodes, in the u split's order (x, y, z each)

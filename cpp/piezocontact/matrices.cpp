@@ -1,5 +1,7 @@
 #include "matrices.h"
 
+#include <cmath>
+
 #include <dolfinx/fem/assembler.h>
 #include <dolfinx/fem/petsc.h>
 #include <dolfinx/la/SparsityPattern.h>
@@ -46,5 +48,33 @@ std::vector<double> owned_entries(Vec x)
   std::vector<double> out(v, v + n);
   VecRestoreArrayRead(x, &v);
   return out;
+}
+double scaled_asymmetry(Mat A, Vec row_sign)
+{
+  Mat B, T;
+  MatDuplicate(A, MAT_COPY_VALUES, &B);
+  if (row_sign)
+    MatDiagonalScale(B, row_sign, nullptr);
+  Vec s;
+  MatCreateVecs(B, &s, nullptr);
+  MatGetDiagonal(B, s);
+  PetscInt n;
+  VecGetLocalSize(s, &n);
+  PetscScalar* a;
+  VecGetArray(s, &a);
+  for (PetscInt i = 0; i < n; ++i)
+    a[i] = a[i] != 0.0 ? 1.0 / std::sqrt(std::abs(a[i])) : 1.0;
+  VecRestoreArray(s, &a);
+  MatDiagonalScale(B, s, s);
+  MatTranspose(B, MAT_INITIAL_MATRIX, &T);
+  // the pattern is symmetric (one space for test and trial), but the
+  // transpose's storage need not match B's entry for entry
+  MatAXPY(T, -1.0, B, DIFFERENT_NONZERO_PATTERN);
+  PetscReal defect = 0.0;
+  MatNorm(T, NORM_MAX, &defect);
+  MatDestroy(&T);
+  MatDestroy(&B);
+  VecDestroy(&s);
+  return defect;
 }
 } // namespace piezocontact

@@ -37,18 +37,6 @@ struct Owned
 };
 
 /// ||K - K^T||_F <= 1e-12 ||K||_F
-bool symmetric(Mat K)
-{
-  Mat Kt;
-  MatTranspose(K, MAT_INITIAL_MATRIX, &Kt);
-  PetscReal norm = 0, diff = 0;
-  MatNorm(K, NORM_FROBENIUS, &norm);
-  MatAXPY(Kt, -1.0, K, DIFFERENT_NONZERO_PATTERN);
-  MatNorm(Kt, NORM_FROBENIUS, &diff);
-  MatDestroy(&Kt);
-  return diff <= 1e-12 * norm;
-}
-
 /// The mean of K_ii / M_ii over the dofs with mass: the scale of the
 /// highest eigenvalues (about c^2 / h^2)
 double diagonal_ratio(Mat K, Mat M)
@@ -117,12 +105,14 @@ struct Pair
   Vec z;
 };
 
-void use_mumps_lu(KSP ksp)
+/// MUMPS' LDL^T for a symmetric K - sigma M (half the factors), its LU
+/// otherwise
+void use_mumps(KSP ksp, bool symmetric)
 {
   KSPSetType(ksp, KSPPREONLY);
   PC pc;
   KSPGetPC(ksp, &pc);
-  PCSetType(pc, PCLU);
+  PCSetType(pc, symmetric ? PCCHOLESKY : PCLU);
   PCFactorSetMatSolverType(pc, MATSOLVERMUMPS);
 }
 
@@ -210,7 +200,7 @@ std::vector<Pair> hermitian_pairs(Mat K, Mat M, double sigma, int nev, ModalCost
   STSetType(st, STSINVERT);
   KSP ksp;
   STGetKSP(st, &ksp);
-  use_mumps_lu(ksp);
+  use_mumps(ksp, true);
   const PetscErrorCode ierr = timed_solve([&] { return EPSSetUp(eps); }, eps, cost);
   PetscInt solves = 0;
   KSPGetTotalIterations(ksp, &solves); // preonly: one per solve
@@ -232,7 +222,7 @@ std::vector<Pair> hermitian_pairs(Mat K, Mat M, double sigma, int nev, ModalCost
     out.push_back(p);
   }
   EPSDestroy(&eps);
-  check(ierr, "EPSSolve (shift-and-invert on MUMPS' LU)");
+  check(ierr, "EPSSolve (shift-and-invert on MUMPS' LDL^T)");
   return out;
 }
 
@@ -276,7 +266,7 @@ std::vector<Pair> condensed_pairs(Mat K, Mat M, double sigma, int nev, ModalCost
   MatAXPY(A, -sigma, M, DIFFERENT_NONZERO_PATTERN);
   KSPCreate(comm, &c.ksp);
   KSPSetOptionsPrefix(c.ksp, "piezo_modal_condensed_");
-  use_mumps_lu(c.ksp);
+  use_mumps(c.ksp, false);
   KSPSetOperators(c.ksp, A, A);
   c.M = M;
   MatCreateVecs(K, &c.in, &c.out);
@@ -367,7 +357,7 @@ std::vector<Mode> natural_modes(const Linearisation& lin, const AnalysisSettings
   ModalCost spent;
   spent.dofs_with_mass = dofs_with_mass(o.M);
   const int nev = std::min<PetscInt>(settings.modes, spent.dofs_with_mass);
-  spent.hermitian = symmetric(o.K);
+  spent.hermitian = scaled_asymmetry(o.K) <= symmetry_tolerance;
   const auto pairs = spent.hermitian
                          ? hermitian_pairs(o.K, o.M, sigma, nev, spent)
                          : condensed_pairs(o.K, o.M, sigma, nev, spent);

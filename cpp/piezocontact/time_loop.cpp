@@ -102,7 +102,9 @@ json timing(const NonlinearSystem& sys, double total_s, double newton_s,
             {"lagged_preconditioner", sys.lagged}}},
           {"linear_solver", sys.linear.iterative() ? "iterative" : "direct"},
           {"factorisation", sys.linear.factorisations()},
+          {"ldlt_pivoting", sys.linear.pivoting()},
           {"factor_entries", sys.linear.factor_entries},
+          {"factor_ordering", sys.linear.factor_ordering},
           {"symmetry_defect", sys.linear.symmetry_defect}};
 }
 
