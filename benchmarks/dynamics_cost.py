@@ -6,7 +6,8 @@
      dofs: time and peak memory against the floor of shift-and-invert, one
      factorisation of K - sigma M plus the solves the eigensolver made, each
      timed on that factorisation; and a solve against the memory bandwidth
-     (it reads the factors twice: 16 GB/s read, shared/DOLFINX-0.5-NOTES.md).
+     (an LDL^T solve reads L twice, forward and backward: 16 GB/s read,
+     shared/DOLFINX-0.5-NOTES.md).
   2. A 200-point admittance sweep of a 2D device (the disc transducer of
      demos/transducer.json): time per frequency against one factorisation
      of its block system (each frequency is a new matrix: the floor of a

@@ -129,7 +129,9 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--quick", action="store_true", help="n = 64 and m = 6 only")
-    ap.add_argument("--write", help="(re)place the report's section in this markdown file")
+    ap.add_argument("--write", help="(re)place the report's sections in this markdown file")
+    ap.add_argument("--orderings-only", action="store_true",
+                    help="only the section on MUMPS' orderings")
     args = ap.parse_args()
     start = time.perf_counter()
     bandwidth = read_bandwidth_gbs()
@@ -149,6 +151,12 @@ def main():
              "largest difference of every probe at every step from the LU run, relative "
              "to each field's largest value.", "",
              f"### Example 1, n = k^-1 = {n2d}, medians of {args.repeat}", ""] + HEAD
+    if not args.orderings_only:
+        compare_factorisations(args, bandwidth, n2d, m3d, lines, start)
+    orderings(args, n2d, m3d)
+
+
+def compare_factorisations(args, bandwidth, n2d, m3d, lines, start):
     print("\n".join(lines), flush=True)
     sq = ["mesh.n=%d" % n2d, "time.steps=%d" % n2d]
     lus, ldlts = [], []
@@ -185,6 +193,9 @@ def main():
     lines.append(f"\n(benchmark wall time {time.perf_counter() - start:.0f} s)")
     if args.write:
         write_section(args.write, HEADING, lines)
+
+
+def orderings(args, n2d, m3d):
     start = time.perf_counter()
     lines = [ORDERING_HEADING, "",
              "Regenerate: the command above (one run per ordering, asked by "

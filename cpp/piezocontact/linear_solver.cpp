@@ -195,14 +195,28 @@ void LinearSolverSetup::factorise_quasi_definite()
 {
   PC pc;
   KSPGetPC(_ksp, &pc);
-  Mat F = mumps_factor(pc);
-  if (!F or _pivoting)
+  const char* prefix = nullptr;
+  PCGetOptionsPrefix(pc, &prefix);
+  PetscBool user = PETSC_FALSE;
+  PetscOptionsHasName(nullptr, prefix, "-mat_mumps_cntl_1", &user);
+  MatSolverType package = nullptr;
+  PCFactorGetMatSolverType(pc, &package);
+  PetscBool mumps = PETSC_FALSE;
+  if (package)
+    PetscStrcmp(package, MATSOLVERMUMPS, &mumps);
+  if (user or !mumps or _pivoting)
   {
     KSPSetUp(_ksp);
     return;
   }
-  MatMumpsSetCntl(F, 1, 0.0);
+  // MUMPS reads its options when it creates its factor, with the user's
+  // (solver.petsc_options) under the same prefix; this one only for LDL^T
+  const std::string name = std::string("-") + (prefix ? prefix : "") + "mat_mumps_cntl_1";
+  PetscOptionsSetValue(nullptr, name.c_str(), "0");
   KSPSetUp(_ksp);
+  PetscOptionsClearValue(nullptr, name.c_str());
+  Mat F = nullptr;
+  PCFactorGetMatrix(pc, &F);
   PetscInt info = 0, negative = -1;
   MatMumpsGetInfog(F, 1, &info);
   if (info >= 0)
@@ -210,34 +224,9 @@ void LinearSolverSetup::factorise_quasi_definite()
   if (negative == _phi_rows)
     return;
   _pivoting = true;
-  PCReset(pc); // a new factor, MUMPS' default threshold pivoting
+  PCReset(pc); // a new factor, with MUMPS' default threshold pivoting
   KSPSetOperators(_ksp, _operator, _operator);
   KSPSetUp(_ksp);
-}
-
-/// The MUMPS factor of a factorisation PC whose package is MUMPS and whose
-/// CNTL(1) is ours (the user set none), created if need be; else null
-Mat LinearSolverSetup::mumps_factor(PC pc) const
-{
-#if PETSC_HAVE_MUMPS
-  const char* prefix = nullptr;
-  PCGetOptionsPrefix(pc, &prefix);
-  PetscBool user = PETSC_FALSE;
-  PetscOptionsHasName(nullptr, prefix, "-mat_mumps_cntl_1", &user);
-  if (user)
-    return nullptr;
-  PCFactorSetUpMatSolverType(pc);
-  Mat F = nullptr;
-  PCFactorGetMatrix(pc, &F);
-  MatSolverType package = nullptr;
-  MatFactorGetSolverType(F, &package);
-  PetscBool mumps = PETSC_FALSE;
-  PetscStrcmp(package, MATSOLVERMUMPS, &mumps);
-  return mumps ? F : nullptr;
-#else
-  (void)pc;
-  return nullptr;
-#endif
 }
 
 std::string LinearSolverSetup::factorisations() const

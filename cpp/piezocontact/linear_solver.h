@@ -119,7 +119,6 @@ private:
   /// KSPSetUp of D J by LDL^T without pivoting, checked by its inertia
   /// (with pivoting if that fails)
   void factorise_quasi_definite();
-  Mat mumps_factor(PC pc) const;
   void make_splits(const Problem& p);
   void scale(Mat M);
   void attach_near_nullspace();
