@@ -167,9 +167,9 @@ def test_a_krylov_failure_cuts_the_step_then_stops_with_exit_3(tmp_path):
 
 
 def test_a_direct_solve_out_of_memory_says_so(tmp_path):
-    """MUMPS out of memory (virtual memory capped at 1.2 GB; the LU of
-    125k 3D dofs needs ~1.9 GB): one line naming the cause and the way
-    out, exit 3 (dolfinx would go on with garbage)"""
+    """MUMPS out of memory (virtual memory capped at 1.2 GB; the LDL^T of
+    125k 3D dofs needs ~1.6 GB, its LU ~2.4 GB): one line naming the cause
+    and the way out, exit 3 (dolfinx would go on with garbage)"""
     exe = " ".join([str(BUILD / "piezo-contact"), "--config", str(SLAB), "--output",
                     str(tmp_path), "--quiet"] + [f"--set {o}" for o in slab(12, steps=1) + QUIET])
     # threads' buffers grow with the cores: one thread, so that the cap hits MUMPS
@@ -178,5 +178,5 @@ def test_a_direct_solve_out_of_memory_says_so(tmp_path):
                           capture_output=True, text=True, timeout=300)
     assert proc.returncode == 3, proc.stderr[-2000:]
     lines = proc.stderr.strip().splitlines()
-    assert len(lines) == 1 and "the LU factorisation ran out of memory" in lines[0] \
+    assert len(lines) == 1 and "the LDL^T factorisation ran out of memory" in lines[0] \
         and 'solver.linear = "iterative" needs a fraction of the memory' in lines[0], lines
