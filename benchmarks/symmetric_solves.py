@@ -125,6 +125,10 @@ def row(case, f, bandwidth, reference):
                       diff=diff, **f)
 
 
+def pivoting_row(case, f, bandwidth, reference):
+    return row(case, f, bandwidth, reference).replace("| LDLT |", "| LDLT, pivoting |")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--repeat", type=int, default=3)
@@ -168,8 +172,7 @@ def compare_factorisations(args, bandwidth, n2d, m3d, lines, start):
     for f, ref in ((lu, None), (ldlt, lu)):
         lines.append(row(f"example 1, n = {n2d}", f, bandwidth, ref))
         print(lines[-1], flush=True)
-    lines.append(row(f"example 1, n = {n2d} (one run)", pivoting, bandwidth, lu)
-                 .replace("| LDLT |", "| LDLT, pivoting |"))
+    lines.append(pivoting_row(f"example 1, n = {n2d} (one run)", pivoting, bandwidth, lu))
     lines.append(f"\nLDL^T / LU: wall {ldlt['wall'] / lu['wall']:.2f}, factorisation "
                  f"{ldlt['factor_s'] / lu['factor_s']:.2f}, one solve "
                  f"{ldlt['solve_s'] / lu['solve_s']:.2f}, factor entries "
@@ -186,8 +189,7 @@ def compare_factorisations(args, bandwidth, n2d, m3d, lines, start):
         for f, ref in ((lu3, None), (ld3, lu3)):
             lines.append(row(f"slab, m = {m}", f, bandwidth, ref))
             print(lines[-1], flush=True)
-        lines.append(row(f"slab, m = {m}", pv3, bandwidth, lu3)
-                     .replace("| LDLT |", "| LDLT, pivoting |"))
+        lines.append(pivoting_row(f"slab, m = {m}", pv3, bandwidth, lu3))
         print(lines[-1], flush=True)
 
     lines.append(f"\n(benchmark wall time {time.perf_counter() - start:.0f} s)")

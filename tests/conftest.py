@@ -11,6 +11,7 @@ import sys
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -56,6 +57,26 @@ def resume(solver, out, np_=1, check=True, overrides=()):
     """Continue the run in `out` (--resume): (summary or None, CompletedProcess)."""
     return run_solver(solver, out, overrides, np_=np_, check=check, resume=True)
 
+
+
+def slab(m, steps=4):
+    """demos/slab.json on n = [4m, 4m, m] for `steps` steps of k = 1/16"""
+    return [f"mesh.n=[{4 * m},{4 * m},{m}]", f"time.steps={steps}", f"time.T={steps / 16}"]
+
+
+def probe_values(summary):
+    """Every probe's u and phi at every step, as arrays"""
+    u = np.array([p["u"] for s in summary["steps"] for p in s["probes"]])
+    phi = np.array([p["phi"] for s in summary["steps"] for p in s["probes"]])
+    return u, phi
+
+
+def relative_difference(a, b):
+    """The largest probe differences of two runs, each relative to the
+    field's largest value in `a`: (u, phi)"""
+    (ua, pa), (ub, pb) = probe_values(a), probe_values(b)
+    return (np.abs(ua - ub).max() / np.abs(ua).max(),
+            np.abs(pa - pb).max() / max(np.abs(pa).max(), 1e-300))
 
 def xdmf_times(path):
     """Time values per function listed in an XDMF file (it must parse)."""

@@ -130,14 +130,7 @@ void LinearSolverSetup::scale(Mat M)
 {
   if (!_s)
     MatCreateVecs(M, &_s, nullptr);
-  MatGetDiagonal(M, _s);
-  PetscInt n;
-  VecGetLocalSize(_s, &n);
-  PetscScalar* a;
-  VecGetArray(_s, &a);
-  for (PetscInt i = 0; i < n; ++i)
-    a[i] = a[i] != 0.0 ? 1.0 / std::sqrt(std::abs(a[i])) : 1.0;
-  VecRestoreArray(_s, &a);
+  jacobi_scaling(M, _s);
   MatDiagonalScale(M, _s, _s);
 }
 

@@ -49,6 +49,18 @@ std::vector<double> owned_entries(Vec x)
   VecRestoreArrayRead(x, &v);
   return out;
 }
+void jacobi_scaling(Mat A, Vec s)
+{
+  MatGetDiagonal(A, s);
+  PetscInt n;
+  VecGetLocalSize(s, &n);
+  PetscScalar* a;
+  VecGetArray(s, &a);
+  for (PetscInt i = 0; i < n; ++i)
+    a[i] = a[i] != 0.0 ? 1.0 / std::sqrt(std::abs(a[i])) : 1.0;
+  VecRestoreArray(s, &a);
+}
+
 double scaled_asymmetry(Mat A, Vec row_sign)
 {
   Mat B, T;
@@ -57,14 +69,7 @@ double scaled_asymmetry(Mat A, Vec row_sign)
     MatDiagonalScale(B, row_sign, nullptr);
   Vec s;
   MatCreateVecs(B, &s, nullptr);
-  MatGetDiagonal(B, s);
-  PetscInt n;
-  VecGetLocalSize(s, &n);
-  PetscScalar* a;
-  VecGetArray(s, &a);
-  for (PetscInt i = 0; i < n; ++i)
-    a[i] = a[i] != 0.0 ? 1.0 / std::sqrt(std::abs(a[i])) : 1.0;
-  VecRestoreArray(s, &a);
+  jacobi_scaling(B, s);
   MatDiagonalScale(B, s, s);
   MatTranspose(B, MAT_INITIAL_MATRIX, &T);
   // the pattern is symmetric (one space for test and trial), but the

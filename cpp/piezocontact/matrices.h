@@ -23,6 +23,10 @@ void assemble_into(Mat M, const FormList& terms,
                    const std::vector<std::shared_ptr<const dolfinx::fem::DirichletBC<double>>>& bcs,
                    const compat::FunctionSpace& V);
 
+/// s <- |diag A|^-1/2 (1 where the diagonal is 0): S A S has entries of
+/// order 1 whatever the units of its blocks
+void jacobi_scaling(Mat A, Vec s);
+
 /// The largest |a_ij - a_ji| of diag(row_sign) A, Jacobi-scaled (each
 /// entry over sqrt|a_ii a_jj|, 1 where a diagonal is 0) so that blocks of
 /// any units compare: round-off (1e-16..1e-15) for a symmetric sum of

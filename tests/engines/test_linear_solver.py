@@ -16,27 +16,12 @@ import subprocess
 import numpy as np
 import pytest
 
-from conftest import BUILD, ENV, ROOT, SQUARE, run_solver
+from conftest import BUILD, ENV, ROOT, SQUARE, relative_difference, run_solver, slab
 
 SLAB = ROOT / "demos" / "slab.json"
 SENSOR = ROOT / "demos" / "sensor.json"
 QUIET = ["output.xdmf=false", "output.nodal=none"]
 ITERATIVE = ["solver.linear=iterative"]
-
-
-def slab(m, steps=4):
-    return [f"mesh.n=[{4 * m},{4 * m},{m}]", f"time.steps={steps}", f"time.T={steps / 16}"]
-
-
-def probe_values(summary):
-    u = np.array([p["u"] for s in summary["steps"] for p in s["probes"]])
-    phi = np.array([p["phi"] for s in summary["steps"] for p in s["probes"]])
-    return u, phi
-
-
-def relative_difference(a, b):
-    (ua, pa), (ub, pb) = probe_values(a), probe_values(b)
-    return (np.abs(ua - ub).max() / np.abs(ua).max(), np.abs(pa - pb).max() / np.abs(pa).max())
 
 
 def steady_krylov(summary):

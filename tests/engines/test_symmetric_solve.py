@@ -18,7 +18,7 @@ import numpy as np
 import piezocontact
 import pytest
 import ufl
-from conftest import ROOT, SQUARE, run_solver
+from conftest import ROOT, SQUARE, relative_difference, run_solver, slab
 
 SLAB = ROOT / "demos" / "slab.json"
 SENSOR = ROOT / "demos" / "sensor.json"
@@ -26,20 +26,6 @@ DISC = ROOT / "demos" / "disc.json"
 INDENTATION = ROOT / "demos" / "indentation.json"
 QUIET = ["output.xdmf=false", "output.nodal=none"]
 LU = ["solver.symmetric=never"]
-
-
-def slab(m, steps=4):
-    return [f"mesh.n=[{4 * m},{4 * m},{m}]", f"time.steps={steps}", f"time.T={steps / 16}"]
-
-
-def relative_difference(a, b):
-    def values(s):
-        u = np.array([p["u"] for st in s["steps"] for p in st["probes"]])
-        phi = np.array([p["phi"] for st in s["steps"] for p in st["probes"]])
-        return u, phi
-    (ua, pa), (ub, pb) = values(a), values(b)
-    return (np.abs(ua - ub).max() / np.abs(ua).max(),
-            np.abs(pa - pb).max() / max(np.abs(pa).max(), 1e-300))
 
 
 def counts(summary):
