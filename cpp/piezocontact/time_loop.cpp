@@ -50,8 +50,11 @@ double measured(const FieldNorms& f)
 
 /// The fields that did not converge and made no progress in the last
 /// iterations: what round-off of terms far larger than the residual does
-/// (data spanning more orders of magnitude than double precision resolves)
-std::string stalled(const std::vector<std::map<std::string, FieldNorms>>& history, double rtol)
+/// (data spanning more orders of magnitude than double precision resolves).
+/// `brief`: the message already asks about the conditioning (unbalanced
+/// forces): the fields only, so that the line stays short
+std::string stalled(const std::vector<std::map<std::string, FieldNorms>>& history, double rtol,
+                    bool brief)
 {
   constexpr std::size_t window = 5;
   if (history.size() < window)
@@ -68,9 +71,12 @@ std::string stalled(const std::vector<std::map<std::string, FieldNorms>>& histor
     if (measured(last) > rtol and hi <= 10 * lo)
       out += (out.empty() ? "" : ", ") + name;
   }
-  return out.empty() ? ""
-                     : " (" + out + " stalled at round-off for " + std::to_string(window)
-                           + " iterations: data off scale by many orders of magnitude?)";
+  if (out.empty())
+    return "";
+  if (brief)
+    return " (" + out + " stalled at round-off)";
+  return " (" + out + " stalled at round-off for " + std::to_string(window)
+         + " iterations: data off scale by many orders of magnitude?)";
 }
 
 double callback_seconds(const NonlinearSystem& sys)
@@ -372,7 +378,8 @@ private:
     const std::string action = _steps.reject();
     _record.reject(attempt.report, action);
     if (action == "stop")
-      _record.fail(what + stalled(_monitor.history, _settings.newton.rtol) + "; gave up after "
+      _record.fail(what + stalled(_monitor.history, _settings.newton.rtol, !_acceptance.balanced())
+                   + "; gave up after "
                    + std::to_string(_steps.max_halvings) + " halvings of the time step");
     int rank;
     MPI_Comm_rank(_comm, &rank);
