@@ -2,18 +2,20 @@
 # Install the Debian packages piezocontact needs (only those missing), then
 # configure and build it in build/ and install it under /usr/local. Safe to
 # run again: it does only what is left to do. Debian 12 (bookworm, dolfinx
-# 0.5.2) and Debian 13 (trixie, dolfinx 0.9.0; see scripts/debian13.sh).
+# 0.5.2), Debian 13 (trixie, dolfinx 0.9.0) and unstable (sid, dolfinx
+# 0.11.0); scripts/debian.sh runs a command in a root of the other two.
 # --packages-only: install the packages and stop.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 # The one difference in what to install: the bindings' library (dolfinx's
-# Python layer is pybind11 in 0.5, nanobind in 0.9; ours must match it)
+# Python layer is pybind11 in 0.5, nanobind from 0.9; ours must match it)
 release=$(. /etc/os-release && echo "${VERSION_CODENAME:-unknown}")
 case "$release" in
   bookworm) BINDINGS=(pybind11-dev) ;;
-  trixie) BINDINGS=(nanobind-dev python3-nanobind) ;;
-  *) echo "setup: Debian 12 (bookworm) or 13 (trixie) expected, found '$release'" >&2
+  # sid says the codename of the testing release it leads to
+  trixie | forky | sid) BINDINGS=(nanobind-dev python3-nanobind) ;;
+  *) echo "setup: Debian 12 (bookworm), 13 (trixie) or unstable (sid) expected, found '$release'" >&2
      exit 2 ;;
 esac
 

@@ -1,17 +1,21 @@
-// compat.h (DRAFT, prototype for the port; see ../dolfinx09-survey.md):
-// the one place where piezocontact meets the parts of dolfinx's C++ API that
-// changed between 0.5.2 (Debian 12) and 0.9.0 (Debian 13). Everything else in
-// cpp/ spells dolfinx the same way on both. Compiled and run against both
-// versions by proto.cpp.
+// compat.h: the one place where piezocontact meets the parts of dolfinx's
+// C++ API that changed between 0.5.2 (Debian 12), 0.9.0 (Debian 13) and
+// 0.11.0 (Debian unstable). Everything else in cpp/ spells dolfinx the same
+// way on all three (docs/dolfinx-versions.md lists every shim).
 #pragma once
 
 #include <dolfinx/common/version.h>
+
+#include <chrono>
+#include <optional>
 
 #include <algorithm>
 #include <array>
 #include <basix/finite-element.h>
 #include <cstdint>
+#include <dolfinx/common/Timer.h>
 #include <dolfinx/fem/Constant.h>
+#include <dolfinx/fem/assembler.h>
 #include <dolfinx/fem/CoordinateElement.h>
 #include <dolfinx/fem/DirichletBC.h>
 #include <dolfinx/fem/Expression.h>
@@ -23,6 +27,7 @@
 #include <dolfinx/fem/utils.h>
 #include <dolfinx/geometry/BoundingBoxTree.h>
 #include <dolfinx/io/XDMFFile.h>
+#include <dolfinx/la/Vector.h>
 #include <dolfinx/la/SparsityPattern.h>
 #include <dolfinx/mesh/Mesh.h>
 #include <dolfinx/mesh/MeshTags.h>
@@ -38,7 +43,13 @@
 #include <utility>
 #include <vector>
 
-// Only two versions are targets: 0.5.2 and >= 0.9 (0.6-0.8 untested)
+// The targets: 0.5.2, 0.9 and 0.11 (0.6-0.8 and 0.10 untested).
+// PIEZO_DOLFINX_09: 0.9 or later; PIEZO_DOLFINX_011: 0.11 (or 0.10)
+#if DOLFINX_VERSION_MAJOR > 0 || DOLFINX_VERSION_MINOR >= 10
+#define PIEZO_DOLFINX_011 1
+#else
+#define PIEZO_DOLFINX_011 0
+#endif
 #if DOLFINX_VERSION_MAJOR > 0 || DOLFINX_VERSION_MINOR >= 9
 #define PIEZO_DOLFINX_09 1
 #include <spdlog/spdlog.h>
@@ -89,10 +100,14 @@ inline dfx::mesh::Topology& topology_mutable(const Mesh& m)
 #endif
 }
 
-/// Geometry nodes of cell c (an AdjacencyList in 0.5, an mdspan in 0.9)
+/// Geometry nodes of cell c (an AdjacencyList in 0.5, an mdspan in 0.9;
+/// 0.11 has one per cell type)
 inline std::span<const std::int32_t> cell_nodes(const Mesh& m, std::int32_t c)
 {
-#if PIEZO_DOLFINX_09
+#if PIEZO_DOLFINX_011 // one dofmap per cell type
+  auto dofmap = m.geometry().dofmaps().front();
+  return {dofmap.data_handle() + c * dofmap.extent(1), dofmap.extent(1)};
+#elif PIEZO_DOLFINX_09
   auto dofmap = m.geometry().dofmap();
   return {dofmap.data_handle() + c * dofmap.extent(1), dofmap.extent(1)};
 #else
@@ -102,7 +117,7 @@ inline std::span<const std::int32_t> cell_nodes(const Mesh& m, std::int32_t c)
 
 /// Bounding-box tree of the cells, owned and ghost (0.9.0's (mesh, tdim)
 /// constructor does not compile: it passes topology_mutable()'s shared_ptr
-/// as a reference)
+/// as a reference; 0.11 takes a padding before the cells)
 #if PIEZO_DOLFINX_09
 using BoundingBoxTree = dfx::geometry::BoundingBoxTree<double>;
 #else
@@ -115,9 +130,26 @@ inline BoundingBoxTree cell_tree(const Mesh& m)
   const auto cells = m.topology()->index_map(tdim);
   std::vector<std::int32_t> all(cells->size_local() + cells->num_ghosts());
   std::iota(all.begin(), all.end(), 0);
+#if PIEZO_DOLFINX_011
+  return BoundingBoxTree(m, tdim, 0.0, std::span<const std::int32_t>(all));
+#else
   return BoundingBoxTree(m, tdim, all);
+#endif
 #else
   return BoundingBoxTree(m, tdim);
+#endif
+}
+
+/// The local values (owned, then ghosts) of a vector, as a view. 0.11's
+/// array()/mutable_array() return the std::vector itself, which `auto v =
+/// x.mutable_array()` would silently copy: cpp/ reads vectors through these.
+inline std::span<const double> values(const dfx::la::Vector<double>& v) { return v.array(); }
+inline std::span<double> mutable_values(dfx::la::Vector<double>& v)
+{
+#if PIEZO_DOLFINX_011
+  return v.array(); // mutable_array() is deprecated
+#else
+  return v.mutable_array();
 #endif
 }
 
@@ -132,16 +164,44 @@ auto index_map(const V& v)
 #endif
 }
 
+/// Geometry nodes of each of some entities of dimension dim, flattened
+/// (0.11 returns their shape too)
+template <typename E>
+std::vector<std::int32_t> entities_to_geometry(const Mesh& m, int dim, const E& entities)
+{
+#if PIEZO_DOLFINX_011
+  return dfx::mesh::entities_to_geometry(m, dim, entities, false).first;
+#else
+  const auto nodes = dfx::mesh::entities_to_geometry(m, dim, entities, false);
+  return {nodes.begin(), nodes.end()};
+#endif
+}
+
 // ---- Meshes -----------------------------------------------------------------
 // 0.9: sizes are int64, the ghost mode moved into the partitioner (the
-// default partitioner does NOT ghost: pass shared_facet explicitly)
+// default partitioner does NOT ghost: pass shared_facet explicitly); 0.11's
+// partitioner also takes the most cells a facet joins (2: no branching)
+namespace detail
+{
+inline dfx::mesh::CellPartitionFunction facet_ghosting_partitioner()
+{
+#if PIEZO_DOLFINX_011
+  return dfx::mesh::create_cell_partitioner(dfx::mesh::GhostMode::shared_facet, 2);
+#elif PIEZO_DOLFINX_09
+  return dfx::mesh::create_cell_partitioner(dfx::mesh::GhostMode::shared_facet);
+#else
+  return nullptr;
+#endif
+}
+} // namespace detail
+
 inline Mesh create_rectangle(MPI_Comm comm, std::array<std::array<double, 2>, 2> p,
                              std::array<std::size_t, 2> n, dfx::mesh::DiagonalType diagonal)
 {
 #if PIEZO_DOLFINX_09
   return dfx::mesh::create_rectangle<double>(
       comm, p, {std::int64_t(n[0]), std::int64_t(n[1])}, dfx::mesh::CellType::triangle,
-      dfx::mesh::create_cell_partitioner(dfx::mesh::GhostMode::shared_facet), diagonal);
+      detail::facet_ghosting_partitioner(), diagonal);
 #else
   return dfx::mesh::create_rectangle(comm, p, n, dfx::mesh::CellType::triangle,
                                      dfx::mesh::GhostMode::shared_facet, diagonal);
@@ -155,7 +215,7 @@ inline Mesh create_box(MPI_Comm comm, std::array<std::array<double, 3>, 2> p,
   return dfx::mesh::create_box<double>(
       comm, p, {std::int64_t(n[0]), std::int64_t(n[1]), std::int64_t(n[2])},
       dfx::mesh::CellType::tetrahedron,
-      dfx::mesh::create_cell_partitioner(dfx::mesh::GhostMode::shared_facet));
+      detail::facet_ghosting_partitioner());
 #else
   return dfx::mesh::create_box(comm, p, n, dfx::mesh::CellType::tetrahedron,
                                dfx::mesh::GhostMode::shared_facet);
@@ -172,7 +232,9 @@ inline Mesh read_mesh(dfx::io::XDMFFile& f, dfx::mesh::CellType cell, const std:
 inline std::pair<std::vector<std::int32_t>, std::vector<std::int32_t>>
 read_meshtags(dfx::io::XDMFFile& f, std::shared_ptr<const Mesh> mesh, const std::string& name)
 {
-#if PIEZO_DOLFINX_09
+#if PIEZO_DOLFINX_011
+  const auto tags = f.read_meshtags(*mesh, name, std::nullopt);
+#elif PIEZO_DOLFINX_09
   const auto tags = f.read_meshtags(*mesh, name);
 #else
   const auto tags = f.read_meshtags(mesh, name);
@@ -224,6 +286,32 @@ std::vector<std::int32_t> locate_boundary_facets(const Mesh& mesh, P on)
 }
 
 // ---- Function spaces ----------------------------------------------------------
+/// A sub-space collapsed, and the map from its dofs to the parent's (0.11
+/// gives one map per cell type: ours have one)
+inline std::pair<FunctionSpace, std::vector<std::int32_t>> collapse(const FunctionSpace& V)
+{
+  auto [collapsed, maps] = V.collapse();
+#if PIEZO_DOLFINX_011
+  return {std::move(collapsed), std::move(maps.front())};
+#else
+  return {std::move(collapsed), std::move(maps)};
+#endif
+}
+
+/// Values of f at points x (m x 3) in their cells, into u (m x value size).
+/// 0.11 takes the Newton tolerance and iterations of a non-affine
+/// pull-back (our geometry is affine: unused; dolfinx Python's defaults)
+inline void eval(const Function& f, std::span<const double> x, std::span<const std::int32_t> cells,
+                 std::span<double> u, std::size_t value_size)
+{
+  const std::size_t m = cells.size();
+#if PIEZO_DOLFINX_011
+  f.eval(x, {m, 3}, cells, u, {m, value_size}, 1e-6, 15);
+#else
+  f.eval(x, {m, 3}, cells, u, {m, value_size});
+#endif
+}
+
 /// Sub-space i (FunctionSpace::sub returns a value since 0.7, a shared_ptr in 0.5)
 inline std::shared_ptr<const FunctionSpace> sub(const FunctionSpace& V, int i)
 {
@@ -249,28 +337,46 @@ using UfcxSpaceFactory = ufcx_function_space* (*)(const char*);
 namespace detail
 {
 #if PIEZO_DOLFINX_09
+using Element = std::shared_ptr<const dfx::fem::FiniteElement<double>>;
+
+/// A dolfinx element of a basix one with `size` components (1: scalar;
+/// 0.9 takes the block size, 0.11 the value shape)
+inline Element blocked(const basix::FiniteElement<double>& e, int size)
+{
+#if PIEZO_DOLFINX_011
+  return std::make_shared<const dfx::fem::FiniteElement<double>>(
+      e, size == 1 ? std::nullopt : std::optional(std::vector<std::size_t>{std::size_t(size)}));
+#else
+  return std::make_shared<const dfx::fem::FiniteElement<double>>(e, size);
+#endif
+}
+
 /// The Lagrange element of a degree, as basix.ufl.element makes it (the
 /// GLL-warped variant: the equispaced points up to degree 2; create_form
 /// compares the hash of a non-mixed element with the forms')
-inline std::shared_ptr<const dfx::fem::FiniteElement<double>> lagrange(const Mesh& mesh, int degree,
-                                                                       int block_size)
+inline Element lagrange(const Mesh& mesh, int degree, int size)
 {
   namespace be = basix::element;
   const auto cell = dfx::mesh::cell_type_to_basix_type(mesh.topology()->cell_type());
-  const auto e = basix::create_element<double>(
-      be::family::P, cell, degree, be::lagrange_variant::gll_warped, be::dpc_variant::unset,
-      false);
-  return std::make_shared<const dfx::fem::FiniteElement<double>>(e, block_size);
+  return blocked(basix::create_element<double>(be::family::P, cell, degree,
+                                               be::lagrange_variant::gll_warped,
+                                               be::dpc_variant::unset, false),
+                 size);
 }
 
-inline std::shared_ptr<FunctionSpace> space_of(std::shared_ptr<Mesh> mesh,
-                                               std::shared_ptr<const dfx::fem::FiniteElement<double>> e,
-                                               std::vector<std::size_t> value_shape)
+/// The space of an element (0.9 takes its value shape too; 0.11 reads it
+/// from the element)
+inline std::shared_ptr<FunctionSpace> space_of(std::shared_ptr<Mesh> mesh, Element e,
+                                               [[maybe_unused]] std::vector<std::size_t> value_shape)
 {
   auto dofmap = std::make_shared<const dfx::fem::DofMap>(
       dfx::fem::create_dofmap(mesh->comm(), dfx::fem::create_element_dof_layout(*e),
                               *mesh->topology_mutable(), nullptr, nullptr));
+#if PIEZO_DOLFINX_011
+  return std::make_shared<FunctionSpace>(mesh, e, dofmap);
+#else
   return std::make_shared<FunctionSpace>(mesh, e, dofmap, std::move(value_shape));
+#endif
 }
 #endif
 } // namespace detail
@@ -310,7 +416,13 @@ inline std::shared_ptr<FunctionSpace> lagrange_space(std::shared_ptr<Mesh> mesh,
 {
   namespace be = basix::element;
   const auto cell = dfx::mesh::cell_type_to_basix_type(topology(*mesh).cell_type());
-#if PIEZO_DOLFINX_09
+#if PIEZO_DOLFINX_011
+  const auto e = basix::create_element<double>(be::family::P, cell, degree,
+                                               be::lagrange_variant::unset,
+                                               be::dpc_variant::unset, discontinuous);
+  return std::make_shared<FunctionSpace>(
+      dfx::fem::create_functionspace(mesh, detail::blocked(e, size)));
+#elif PIEZO_DOLFINX_09
   const auto e = basix::create_element<double>(be::family::P, cell, degree,
                                                be::lagrange_variant::unset,
                                                be::dpc_variant::unset, discontinuous);
@@ -347,7 +459,9 @@ inline std::shared_ptr<FunctionSpace> dg0_space(std::shared_ptr<Mesh> mesh, int 
 /// process of their parent
 inline std::shared_ptr<Mesh> refined_once(const Mesh& mesh)
 {
-#if PIEZO_DOLFINX_09
+#if PIEZO_DOLFINX_011 // the default partitioner keeps cells where their parent is
+  return std::make_shared<Mesh>(std::get<0>(dfx::refinement::refine(mesh, std::nullopt)));
+#elif PIEZO_DOLFINX_09
   return std::make_shared<Mesh>(
       std::get<0>(dfx::refinement::refine(mesh, std::nullopt, nullptr)));
 #else
@@ -427,9 +541,15 @@ create_form(const ufcx_form& f, const std::vector<std::shared_ptr<const Function
       mesh->topology_mutable()->create_connectivity(dim, tdim);
       mesh->topology_mutable()->create_connectivity(tdim, dim);
     }
+#if PIEZO_DOLFINX_011 // the dimension follows from the type
+    domain = dfx::fem::compute_integration_domains(type, *mesh->topology(), piece);
+#else
     domain = dfx::fem::compute_integration_domains(type, *mesh->topology(), piece, dim);
+#endif
     subdomains[type] = {{1, std::span<const std::int32_t>(domain)}};
   }
+  // 0.9: coefficients' entity maps (mixed-dimensional forms), 0.11: the
+  // entity maps of the form: none here either way
   return std::make_shared<const Form>(dfx::fem::create_form<double>(
       f, spaces, coefficients, constants, subdomains, {}, mesh));
 #else
@@ -442,12 +562,15 @@ create_form(const ufcx_form& f, const std::vector<std::shared_ptr<const Function
 }
 
 /// 0.9 drops the mesh argument (an Expression has no mesh; interpolation
-/// uses the target's)
+/// uses the target's); 0.11 takes entity maps (none: one mesh)
 inline std::shared_ptr<const Expression>
 create_expression(const ufcx_expression& e, const Coefficients& coefficients,
                   const Constants& constants, [[maybe_unused]] std::shared_ptr<const Mesh> mesh)
 {
-#if PIEZO_DOLFINX_09
+#if PIEZO_DOLFINX_011
+  return std::make_shared<const Expression>(
+      dfx::fem::create_expression<double>(e, coefficients, constants, {}));
+#elif PIEZO_DOLFINX_09
   return std::make_shared<const Expression>(
       dfx::fem::create_expression<double>(e, coefficients, constants));
 #else
@@ -458,14 +581,19 @@ create_expression(const ufcx_expression& e, const Coefficients& coefficients,
 
 // ---- Sparsity -------------------------------------------------------------------
 /// Add the cell and exterior-facet integrals of a bilinear form on V x V
-/// (0.9: one cells() call for both, facets given as (cell, local facet))
+/// (0.9: one cells() call for both, facets given as (cell, local facet);
+/// 0.11 does it for a form, its integrals indexed per kernel)
 inline void add_sparsity(dfx::la::SparsityPattern& pattern, const Form& a,
-                         const dfx::fem::DofMap& dofmap)
+                         [[maybe_unused]] const dfx::fem::DofMap& dofmap)
 {
   using dfx::fem::IntegralType;
+#if PIEZO_DOLFINX_011
+  if (a.num_integrals(IntegralType::interior_facet, 0) > 0)
+    throw std::runtime_error("interior-facet terms are not supported by the Jacobian's sparsity");
+  dfx::fem::build_sparsity_pattern(pattern, a);
+#elif PIEZO_DOLFINX_09
   if (!a.integral_ids(IntegralType::interior_facet).empty())
     throw std::runtime_error("interior-facet terms are not supported by the Jacobian's sparsity");
-#if PIEZO_DOLFINX_09
   for (int id : a.integral_ids(IntegralType::cell))
   {
     const auto cells = a.domain(IntegralType::cell, id);
@@ -480,6 +608,8 @@ inline void add_sparsity(dfx::la::SparsityPattern& pattern, const Form& a,
     dfx::fem::sparsitybuild::cells(pattern, {cells, cells}, {{dofmap, dofmap}});
   }
 #else
+  if (!a.integral_ids(IntegralType::interior_facet).empty())
+    throw std::runtime_error("interior-facet terms are not supported by the Jacobian's sparsity");
   for (int id : a.integral_ids(IntegralType::cell))
     dfx::fem::sparsitybuild::cells(pattern, a.cell_domains(id), {{dofmap, dofmap}});
   for (int id : a.integral_ids(IntegralType::exterior_facet))
@@ -497,13 +627,54 @@ inline void finalize(dfx::la::SparsityPattern& pattern)
 #endif
 }
 
+// ---- Matrix assembly ---------------------------------------------------------------
+namespace detail
+{
+/// 0.11 takes conditions by reference
+inline std::vector<std::reference_wrapper<const DirichletBC>> refs(const BCList& bcs)
+{
+  std::vector<std::reference_wrapper<const DirichletBC>> out;
+  for (const auto& bc : bcs)
+    out.push_back(*bc);
+  return out;
+}
+} // namespace detail
+
+/// Add a bilinear form's entries, the conditions' rows and columns zeroed
+template <typename SetFn>
+void assemble_matrix(SetFn add, const Form& a, const BCList& bcs)
+{
+#if PIEZO_DOLFINX_011
+  dfx::fem::assemble_matrix(add, a, detail::refs(bcs));
+#else
+  dfx::fem::assemble_matrix(add, a, bcs);
+#endif
+}
+
+/// 1 on the diagonal of the conditions' rows of V
+template <typename SetFn>
+void set_diagonal(SetFn set, const FunctionSpace& V, const BCList& bcs)
+{
+#if PIEZO_DOLFINX_011
+  dfx::fem::set_diagonal<double>(set, V, detail::refs(bcs));
+#else
+  dfx::fem::set_diagonal<double>(set, V, bcs);
+#endif
+}
+
 // ---- PETSc assembly --------------------------------------------------------------
 /// b -= alpha A (g - x0) for one bilinear form (0.9 cannot deduce the
-/// geometry type: it is explicit)
+/// geometry type: it is explicit; 0.11 takes forms and conditions by
+/// reference)
 inline void apply_lifting(Vec b, const std::shared_ptr<const Form>& a, const BCList& bcs, Vec x0,
                           double alpha)
 {
-#if PIEZO_DOLFINX_09
+#if PIEZO_DOLFINX_011
+  const std::vector<std::optional<std::reference_wrapper<const Form>>> forms{std::cref(*a)};
+  const std::vector<std::vector<std::reference_wrapper<const DirichletBC>>> bcs1{
+      detail::refs(bcs)};
+  dfx::fem::petsc::apply_lifting<double>(b, forms, bcs1, {x0}, alpha);
+#elif PIEZO_DOLFINX_09
   dfx::fem::petsc::apply_lifting<double>(b, {a}, {bcs}, {x0}, alpha);
 #else
   dfx::fem::petsc::apply_lifting(b, {a}, {bcs}, {x0}, alpha);
@@ -512,12 +683,64 @@ inline void apply_lifting(Vec b, const std::shared_ptr<const Form>& a, const BCL
 
 inline void set_bc(Vec b, const BCList& bcs, Vec x0, double alpha)
 {
-#if PIEZO_DOLFINX_09
+#if PIEZO_DOLFINX_011
+  dfx::fem::petsc::set_bc<double>(b, detail::refs(bcs), x0, alpha);
+#elif PIEZO_DOLFINX_09
   dfx::fem::petsc::set_bc<double>(b, bcs, x0, alpha);
 #else
   dfx::fem::petsc::set_bc(b, bcs, x0, alpha);
 #endif
 }
+
+// ---- PETSc 3.18 (0.5.2) to 3.25 (0.11) --------------------------------------------
+namespace detail
+{
+/// The specific message's pointer type read off PetscErrorMessage's
+/// declaration (char* in 3.18, const char* in 3.25)
+template <typename Code, typename Specific>
+std::pair<std::string, std::string>
+error_message(PetscErrorCode (*message)(Code, const char*[], Specific**), PetscErrorCode code)
+{
+  const char* text = nullptr;
+  Specific* specific = nullptr;
+  message(static_cast<Code>(code), &text, &specific);
+  return {text ? text : "", specific ? specific : ""};
+}
+} // namespace detail
+
+/// PETSc's text of an error code, and the specific message of the last error
+inline std::pair<std::string, std::string> petsc_error_message(PetscErrorCode code)
+{
+  return detail::error_message(&PetscErrorMessage, code);
+}
+
+// ---- Timing -------------------------------------------------------------------------
+/// A wall-clock timer registered in dolfinx's TimeLogger under `task`, in
+/// seconds (0.11's Timer is a template on its clock and returns durations;
+/// 0.9's elapsed() returns wall, user and system times)
+class Timer
+{
+public:
+  explicit Timer(const std::string& task) : _timer(task) {}
+  double stop() { return seconds(_timer.stop()); }
+  double elapsed() const
+  {
+#if PIEZO_DOLFINX_011
+    return seconds(_timer.elapsed());
+#else
+    return _timer.elapsed()[0];
+#endif
+  }
+
+private:
+#if PIEZO_DOLFINX_011
+  static double seconds(std::chrono::duration<double> d) { return d.count(); }
+  dfx::common::Timer<> _timer;
+#else
+  static double seconds(double s) { return s; }
+  dfx::common::Timer _timer;
+#endif
+};
 
 // ---- Logging: loguru (0.5) became spdlog (0.6+) ------------------------------------
 inline void log_errors_only()

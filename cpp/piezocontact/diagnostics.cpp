@@ -67,8 +67,8 @@ std::vector<std::vector<double>> Probes::evaluate(const Problem& problem) const
       x.insert(x.end(), points[i].begin(), points[i].end());
     const std::size_t m = _mine.size();
     std::vector<double> u(d * m), phi(m);
-    problem.u->eval(x, {m, 3}, _cells, u, {m, d});
-    problem.phi->eval(x, {m, 3}, _cells, phi, {m, 1});
+    compat::eval(*problem.u, x, _cells, u, d);
+    compat::eval(*problem.phi, x, _cells, phi, 1);
     for (std::size_t j = 0; j < m; ++j)
     {
       std::copy_n(u.begin() + d * j, d, values.begin() + w * _mine[j]);
@@ -123,8 +123,8 @@ ContactGeometry::ContactGeometry(const Problem& problem, std::span<const std::in
   std::vector<std::int32_t> cells;
   for (auto f : facets)
     cells.push_back(f_to_c->links(f)[0]);
-  const auto fgeo = mesh::entities_to_geometry(mesh, tdim - 1, facets, false);
-  const auto cgeo = mesh::entities_to_geometry(mesh, tdim, cells, false);
+  const auto fgeo = compat::entities_to_geometry(mesh, tdim - 1, facets);
+  const auto cgeo = compat::entities_to_geometry(mesh, tdim, cells);
   const std::size_t nf = tdim, nc = tdim + 1; // vertices of a facet, of a cell
   const auto x = mesh.geometry().x(); // (num_nodes, 3)
   for (std::size_t i = 0; i < facets.size(); ++i)
@@ -155,10 +155,10 @@ ContactGeometry::max_normal_gap(const Problem& problem, double gap,
   {
     const std::size_t m = _cells.size(), d = problem.dim();
     std::vector<double> u(d * m), g(m, 0.0);
-    problem.u->eval(_points, {m, 3}, _cells, u, {m, d});
+    compat::eval(*problem.u, _points, _cells, u, d);
     // a gap given by an expression: its field, the Constant being zero
     if (gap_field)
-      gap_field->eval(_points, {m, 3}, _cells, g, {m, 1});
+      compat::eval(*gap_field, _points, _cells, g, 1);
     for (std::size_t j = 0; j < m; ++j)
     {
       double un = 0.0;
@@ -244,7 +244,7 @@ ObstaclePenetration::ObstaclePenetration(const Problem& problem)
   compat::topology_mutable(mesh).create_connectivity(tdim - 1, tdim);
   const auto f_to_c = compat::topology(mesh).connectivity(tdim - 1, tdim);
   // a component of u's space: the scalar space of its nodes
-  auto [V, _] = compat::sub(*problem.V_u, 0)->collapse();
+  auto [V, _] = compat::collapse(*compat::sub(*problem.V_u, 0));
   _r = std::make_shared<fem::Function<double>>(
       std::make_shared<compat::FunctionSpace>(std::move(V)));
   for (const auto& [name, contact] : problem.model.obstacles)
@@ -287,7 +287,7 @@ std::optional<double> ObstaclePenetration::largest(const Problem& problem,
     for (const auto& part : parts->second)
     {
       _r->interpolate(*part.expression, part.cells);
-      const auto r = _r->x()->array();
+      const auto r = compat::values(*_r->x());
       for (auto dof : part.dofs)
         local = std::max(local, r[dof]);
     }

@@ -33,7 +33,7 @@ json complex_json(Complex z) { return json::array({z.real(), z.imag()}); }
 /// problem.x <- owned entries (ghosts updated), and its u and phi
 void set_state(Problem& p, const std::vector<double>& owned)
 {
-  auto x = p.x->x()->mutable_array();
+  auto x = compat::mutable_values(*p.x->x());
   std::copy(owned.begin(), owned.end(), x.begin());
   p.x->x()->scatter_fwd();
   p.update_fields();
@@ -136,7 +136,7 @@ json modal(Problem& p, const RunSettings& s, const fs::path& dir, json summary,
 /// floating)
 std::vector<double> driven_potentials(Problem& p)
 {
-  auto x = p.x->x()->mutable_array();
+  auto x = compat::mutable_values(*p.x->x());
   const std::vector<double> saved(x.begin(), x.end());
   std::fill(x.begin(), x.end(), 0.0);
   for (const auto& e : p.electrodes)
@@ -221,9 +221,10 @@ void write_responses(Problem& p, const fs::path& xdmf,
                  for (int part = 0; part < 2; ++part)
                  {
                    set_state(p, part == 0 ? responses[i].re : responses[i].im);
-                   std::ranges::copy(p.u->x()->array(), fields[part]->x()->mutable_array().begin());
-                   std::ranges::copy(p.phi->x()->array(),
-                                     fields[2 + part]->x()->mutable_array().begin());
+                   std::ranges::copy(compat::values(*p.u->x()),
+                                     compat::mutable_values(*fields[part]->x()).begin());
+                   std::ranges::copy(compat::values(*p.phi->x()),
+                                     compat::mutable_values(*fields[2 + part]->x()).begin());
                  }
                  return responses[i].frequency;
                });

@@ -41,7 +41,7 @@ HarmonicSolver::HarmonicSolver(Problem& p, const Linearisation& lin, const std::
   VecGetLocalSize(_L, &n);
   PetscScalar* l;
   VecGetArray(_L, &l);
-  std::copy_n(L.array().begin(), n, l);
+  std::copy_n(compat::values(L).begin(), n, l);
   VecRestoreArray(_L, &l);
   lin.restrict_to(_L, _F);
   // a floating electrode's charge: sum over it of K x = sum of L - Q
@@ -59,7 +59,7 @@ HarmonicSolver::HarmonicSolver(Problem& p, const Linearisation& lin, const std::
   // prescribed values (the floating electrodes' conditions are not data)
   std::vector<double> g(n, 0.0);
   {
-    auto x = p.x->x()->mutable_array();
+    auto x = compat::mutable_values(*p.x->x());
     std::vector<double> saved(x.begin(), x.end());
     std::fill(x.begin(), x.end(), 0.0);
     for (const auto& bc : p.bcs())

@@ -43,8 +43,8 @@ Linearisation::Linearisation(Problem& p)
 {
   if (!p.model.x_dot)
     throw std::logic_error("the model has no linearisation (ModelSpec::linearised)");
-  std::fill(p.model.x_dot->x()->mutable_array().begin(),
-            p.model.x_dot->x()->mutable_array().end(), 0.0); // the state at rest
+  std::fill(compat::mutable_values(*p.model.x_dot->x()).begin(),
+            compat::mutable_values(*p.model.x_dot->x()).end(), 0.0); // the state at rest
   la::petsc::Matrix pattern(create_matrix(all_forms(p.model), *p.W), false);
   _K = assembled(p.model.K, pattern.mat(), *p.W);
   _C = assembled(p.model.C, pattern.mat(), *p.W);

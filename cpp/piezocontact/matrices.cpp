@@ -31,10 +31,10 @@ void assemble_into(Mat M, const FormList& terms,
 {
   MatZeroEntries(M);
   for (const auto& a : terms)
-    fem::assemble_matrix(la::petsc::Matrix::set_fn(M, ADD_VALUES), *a, bcs);
+    compat::assemble_matrix(la::petsc::Matrix::set_fn(M, ADD_VALUES), *a, bcs);
   MatAssemblyBegin(M, MAT_FLUSH_ASSEMBLY);
   MatAssemblyEnd(M, MAT_FLUSH_ASSEMBLY);
-  fem::set_diagonal<double>(la::petsc::Matrix::set_fn(M, INSERT_VALUES), V, bcs);
+  compat::set_diagonal(la::petsc::Matrix::set_fn(M, INSERT_VALUES), V, bcs);
   MatAssemblyBegin(M, MAT_FINAL_ASSEMBLY);
   MatAssemblyEnd(M, MAT_FINAL_ASSEMBLY);
 }

@@ -147,7 +147,7 @@ void NonlinearSystem::J(const Vec, Mat M)
     ScopedTimer timer(jacobian, "Jacobian");
     assemble_into(M, _p.model.J, _p.bcs(), *_p.W);
   }
-  const auto x = _p.x->x()->array();
+  const auto x = compat::values(*_p.x->x());
   x_assembled.assign(x.begin(), x.end());
   const bool k_changed = k != k_assembled;
   k_assembled = k;
@@ -155,7 +155,7 @@ void NonlinearSystem::J(const Vec, Mat M)
   {
     // Factorise (set up the preconditioner) here, timed apart from the
     // solves of KSPSolve
-    common::Timer timer(linear.iterative() ? "piezocontact: preconditioner set-up"
+    compat::Timer timer(linear.iterative() ? "piezocontact: preconditioner set-up"
                                            : "piezocontact: LU factorisation");
     const bool fresh = linear.operator_changed(M, k_changed);
     factorisation.seconds += timer.stop();

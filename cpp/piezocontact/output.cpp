@@ -65,7 +65,7 @@ gather_nodal(const fem::Function<double>& f, MPI_Comm comm)
   const int d = V.mesh()->geometry().dim();
   const std::size_t cols = d + bs;
   const auto coords = V.tabulate_dof_coordinates(false); // (num_dofs, 3)
-  const auto values = f.x()->array();
+  const auto values = compat::values(*f.x());
   std::vector<double> rows;
   rows.reserve(n * cols);
   for (int i = 0; i < n; ++i)
@@ -279,7 +279,7 @@ Writer::Writer(const Problem& problem, const OutputSettings& settings, const fs:
   _stress = std::make_shared<fem::Function<double>>(compat::dg0_space(mesh, voigt.size()));
   for (std::size_t c = 0; c < voigt.size(); ++c)
   {
-    auto [Vc, map] = compat::sub(*_stress->function_space(), int(c))->collapse();
+    auto [Vc, map] = compat::collapse(*compat::sub(*_stress->function_space(), int(c)));
     _stress_components.push_back(std::make_shared<fem::Function<double>>(
         std::make_shared<compat::FunctionSpace>(std::move(Vc))));
     _stress_components.back()->name = "stress_" + voigt[c];
@@ -376,10 +376,10 @@ void Writer::write_xdmf_step(int step, double t)
     _D->interpolate(*region.electric_displacement, region.cells);
     _stress->interpolate(*region.stress, region.cells);
   }
-  const auto all = _stress->x()->array();
+  const auto all = compat::values(*_stress->x());
   for (std::size_t c = 0; c < _stress_components.size(); ++c)
   {
-    auto values = _stress_components[c]->x()->mutable_array();
+    auto values = compat::mutable_values(*_stress_components[c]->x());
     for (std::size_t i = 0; i < values.size(); ++i)
       values[i] = all[_stress_maps[c][i]];
   }

@@ -81,8 +81,8 @@ const fem::Function<double>& OutputMesh::operator()(const fem::Function<double>&
   auto& t = it->second;
   const std::size_t m = t.cells.size();
   const std::size_t bs = f.function_space()->dofmap()->bs();
-  auto values = t.target->x()->mutable_array();
-  f.eval(t.points, {m, 3}, t.cells, values.subspan(0, m * bs), {m, bs});
+  auto values = compat::mutable_values(*t.target->x());
+  compat::eval(f, t.points, t.cells, values.subspan(0, m * bs), bs);
   return *t.target;
 }
 } // namespace piezocontact

@@ -1,4 +1,6 @@
 #include "petsc_options.h"
+
+#include "compat.h"
 #include "config.h"
 #include "json_input.h"
 
@@ -115,10 +117,8 @@ QuietPetscErrors::~QuietPetscErrors() { PetscPopErrorHandler(); }
 
 std::string last_petsc_error(int code)
 {
-  const char* text = nullptr;
-  char* specific = nullptr;
-  PetscErrorMessage(static_cast<PetscErrorCode>(code), &text, &specific);
-  std::string out = specific && *specific ? specific : (text ? text : "PETSc error");
+  const auto [text, specific] = compat::petsc_error_message(static_cast<PetscErrorCode>(code));
+  std::string out = !specific.empty() ? specific : (!text.empty() ? text : "PETSc error");
   std::replace(out.begin(), out.end(), '\n', ' ');
   return printable(out, 200);
 }

@@ -39,7 +39,7 @@ bool has_contact(const Model& model)
 
 Problem::Collapsed Problem::collapse(const compat::FunctionSpace& W, int i)
 {
-  auto [V, dofs] = compat::sub(W, i)->collapse();
+  auto [V, dofs] = compat::collapse(*compat::sub(W, i));
   return {std::make_shared<compat::FunctionSpace>(std::move(V)), std::move(dofs)};
 }
 
@@ -149,7 +149,7 @@ std::map<std::string, std::vector<double>> Problem::reactions() const
   const auto& imap = *W->dofmap()->index_map;
   const int bs = W->dofmap()->index_map_bs();
   const auto r = assemble(model.F);
-  return reactions(r.array().subspan(0, imap.size_local() * bs));
+  return reactions(compat::values(r).subspan(0, imap.size_local() * bs));
 }
 
 ForceBalance Problem::force_balance(std::span<const double> r) const
@@ -176,7 +176,7 @@ ForceBalance Problem::force_balance() const
 {
   const int bs = W->dofmap()->index_map_bs();
   const auto r = assemble(model.F);
-  return force_balance(r.array().subspan(0, W->dofmap()->index_map->size_local() * bs));
+  return force_balance(compat::values(r).subspan(0, W->dofmap()->index_map->size_local() * bs));
 }
 
 double Problem::load_sum() const
@@ -186,7 +186,7 @@ double Problem::load_sum() const
   std::vector<std::int32_t> constrained = _bc_dofs;
   std::sort(constrained.begin(), constrained.end());
   double local = 0.0, global = 0.0;
-  const auto a = L.array();
+  const auto a = compat::values(L);
   const std::int32_t owned = W->dofmap()->index_map->size_local() * bs;
   for (const std::int32_t d : u_dofs)
     if (d < owned and !std::binary_search(constrained.begin(), constrained.end(), d))
@@ -237,7 +237,7 @@ la::Vector<double> Problem::assemble(const FormList& terms) const
   const auto& V = terms.empty() ? *W : *terms.front()->function_spaces().at(0);
   la::Vector<double> b(V.dofmap()->index_map, V.dofmap()->index_map_bs());
   for (const auto& term : terms)
-    fem::assemble_vector(b.mutable_array(), *term);
+    fem::assemble_vector(compat::mutable_values(b), *term);
   b.scatter_rev(std::plus<double>());
   return b;
 }
@@ -290,7 +290,7 @@ void Problem::create_bcs(const std::vector<DirichletSettings>& dirichlet,
           place_spatial(g, datum, &facets);
         else
         {
-          auto values = g->x()->mutable_array();
+          auto values = compat::mutable_values(*g->x());
           for (int i = 0; i < dim; ++i)
             for (std::size_t j = i; j < values.size(); j += dim)
               values[j] = datum.components[i].number;
@@ -326,7 +326,7 @@ void Problem::create_bcs(const std::vector<DirichletSettings>& dirichlet,
                             bc.potential_history}, &facets);
         else
         {
-          std::fill(g->x()->mutable_array().begin(), g->x()->mutable_array().end(),
+          std::fill(compat::mutable_values(*g->x()).begin(), compat::mutable_values(*g->x()).end(),
                     bc.potential->number);
           scale_in_time(g, bc.potential_history);
         }
@@ -376,9 +376,9 @@ void Problem::check_electrodes_apart(const std::string& source) const
   {
     la::Vector<double> mark(imap, bs);
     for (auto d : electrodes[e].dofs)
-      mark.mutable_array()[d] = 1.0;
+      compat::mutable_values(mark)[d] = 1.0;
     mark.scatter_rev([](double a, double b) { return std::max(a, b); });
-    on[e].assign(mark.array().begin(), mark.array().begin() + owned);
+    on[e].assign(compat::values(mark).begin(), compat::values(mark).begin() + owned);
   }
   for (std::size_t e = 0; e < electrodes.size(); ++e)
   {
@@ -437,7 +437,7 @@ void Problem::hold_floating_potentials(std::span<const double> x)
 
 void Problem::hold(Electrode& e, double V)
 {
-  auto g = e.potential->x()->mutable_array();
+  auto g = compat::mutable_values(*e.potential->x());
   std::fill(g.begin(), g.end(), V);
   e.held = V;
 }
@@ -484,16 +484,16 @@ double Problem::update_contact_pressure()
     area.push_back(model.contact_nodal_area);
   }
   if (model.obstacles.empty())
-    return lumped_pressure(load, area, contact_pressure->x()->mutable_array());
+    return lumped_pressure(load, area, compat::mutable_values(*contact_pressure->x()));
   // the paper's foundation's measure alone; the field of every contact
-  std::vector<double> scratch(contact_pressure->x()->array().size(), 0.0);
+  std::vector<double> scratch(compat::values(*contact_pressure->x()).size(), 0.0);
   const double foundation = lumped_pressure(load, area, scratch);
   for (const auto& [_, o] : model.obstacles)
   {
     load.insert(load.end(), o.pressure_load.begin(), o.pressure_load.end());
     area.insert(area.end(), o.nodal_area.begin(), o.nodal_area.end());
   }
-  lumped_pressure(load, area, contact_pressure->x()->mutable_array());
+  lumped_pressure(load, area, compat::mutable_values(*contact_pressure->x()));
   return foundation;
 }
 
@@ -519,12 +519,12 @@ double Problem::lumped_pressure(const FormList& load_terms, const FormList& area
   double local = 0.0, global = 0.0;
   for (std::int32_t i = 0; i < owned; ++i)
   {
-    const double a = area.array()[i];
-    p[i] = a > 0.0 ? load.array()[i] / a : 0.0;
+    const double a = compat::values(area)[i];
+    p[i] = a > 0.0 ? compat::values(load)[i] / a : 0.0;
     if (p[i] > 0.0)
       local += a;
   }
-  if (contact_pressure and p.data() == contact_pressure->x()->mutable_array().data())
+  if (contact_pressure and p.data() == compat::mutable_values(*contact_pressure->x()).data())
     contact_pressure->x()->scatter_fwd();
   MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_SUM, comm);
   return global;
@@ -536,7 +536,7 @@ void Problem::scale_in_time(const std::shared_ptr<fem::Function<double>>& g,
   if (history.kind == History::Kind::constant)
     return;
   _scaled_bc_values.push_back(g); // kept alive with its values
-  const auto values = g->x()->mutable_array();
+  const auto values = compat::mutable_values(*g->x());
   _scaled.push_back({values, std::vector<double>(values.begin(), values.end()), history});
 }
 
@@ -594,7 +594,7 @@ void Problem::evaluate(const Placed& placed, double t, double factor) const
   if (std::size_t(bs) != components.size())
     throw std::logic_error(placed.datum.key + ": " + std::to_string(components.size())
                            + " components for a field of " + std::to_string(bs));
-  auto values = placed.field->x()->mutable_array();
+  auto values = compat::mutable_values(*placed.field->x());
   std::string error;
   for (std::size_t k = 0; k < placed.nodes.size(); ++k)
   {
@@ -629,9 +629,9 @@ void Problem::evaluate(const Placed& placed, double t, double factor) const
 
 void Problem::update_fields()
 {
-  auto xa = x->x()->array();
-  auto ua = u->x()->mutable_array();
-  auto pa = phi->x()->mutable_array();
+  auto xa = compat::values(*x->x());
+  auto ua = compat::mutable_values(*u->x());
+  auto pa = compat::mutable_values(*phi->x());
   for (std::size_t i = 0; i < u_dofs.size(); ++i)
     ua[i] = xa[u_dofs[i]];
   for (std::size_t i = 0; i < phi_dofs.size(); ++i)

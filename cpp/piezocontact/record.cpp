@@ -250,7 +250,7 @@ json Record::accept(StepState state, const SolveReport& report, const StateViews
   else // collective: every rank alike (the engine decides, not the data)
   {
     assembled.emplace(problem.assemble(problem.model.F));
-    r = assembled->array().subspan(
+    r = compat::values(*assembled).subspan(
         0, problem.W->dofmap()->index_map->size_local() * problem.W->dofmap()->index_map_bs());
   }
   step["reactions"] = json::object();
@@ -331,7 +331,7 @@ json Record::electrodes_json(std::span<const double> r, double k) const
 {
   const auto& x = *_problem.x->x();
   const auto potentials = _problem.electrode_potentials(
-      x.array().subspan(0, compat::index_map(x)->size_local() * x.bs()));
+      compat::values(x).subspan(0, compat::index_map(x)->size_local() * x.bs()));
   const auto charges = _problem.electrode_charges();
   const auto reaction = _problem.reaction_charges(r);
   const json& steps = _summary["steps"];

@@ -4,6 +4,7 @@
 #include "diagnostics.h"
 #include "fieldwise.h"
 #include "json_input.h"
+#include "newton.h"
 #include "nonlinear_system.h"
 #include "petsc_options.h"
 #include "step_control.h"
@@ -13,7 +14,6 @@
 #include <dolfinx/fem/assembler.h>
 #include <dolfinx/fem/petsc.h>
 #include <dolfinx/la/petsc.h>
-#include <dolfinx/nls/NewtonSolver.h>
 #include <iostream>
 #include <limits>
 #include <petscksp.h>
@@ -128,11 +128,12 @@ public:
                  problem.W->dofmap()->index_map->size_local()
                      * problem.W->dofmap()->index_map_bs(),
                  settings.newton.rtol, settings.newton.atol, problem.comm),
-        _x_vec(la::petsc::create_vector_wrap(*problem.x->x()), false), _newton(problem.comm),
+        _x_vec(la::petsc::create_vector_wrap(*problem.x->x()), false),
         _options(petsc_prefix, solver_options(settings)),
+        _newton(problem.comm, petsc_prefix, settings.newton.max_iterations),
         _system(configured(_newton, problem, _monitor, settings)),
         _steps(settings.T, settings.steps, settings.newton.max_step_halvings),
-        _xa(problem.x->x()->mutable_array()), _xp(problem.x_prev->x()->mutable_array()),
+        _xa(compat::mutable_values(*problem.x->x())), _xp(compat::mutable_values(*problem.x_prev->x())),
         _x_prev2(_xp.begin(), _xp.end()), _progress(progress)
   {
     set_callbacks();
@@ -191,15 +192,12 @@ private:
     return settings.symmetric and settings.linear == LinearSolver::direct;
   }
 
-  /// The Newton solver's KSP under our prefix, and the system on it
-  static std::unique_ptr<NonlinearSystem> configured(nls::petsc::NewtonSolver& newton,
-                                                     Problem& problem,
+  /// The system on the Newton iteration's KSP
+  static std::unique_ptr<NonlinearSystem> configured(const Newton& newton, Problem& problem,
                                                      FieldwiseConvergence& monitor,
                                                      const RunSettings& settings)
   {
-    newton.get_krylov_solver().set_options_prefix(petsc_prefix);
-    newton.get_krylov_solver().set_from_options();
-    return std::make_unique<NonlinearSystem>(problem, monitor, newton.get_krylov_solver().ksp(),
+    return std::make_unique<NonlinearSystem>(problem, monitor, newton.ksp(),
                                              settings.reuse_factorisation, settings.linear,
                                              symmetric_allowed(settings));
   }
@@ -207,26 +205,18 @@ private:
   void set_callbacks()
   {
     NonlinearSystem& system = *_system;
-    _newton.setF([&system](const Vec x, Vec r) { system.F(x, r); }, system.b.vec());
-    _newton.setJ([&system](const Vec x, Mat A) { system.J(x, A); }, system.A.mat());
-    _newton.set_form(
-        [](Vec x)
-        {
-          VecGhostUpdateBegin(x, INSERT_VALUES, SCATTER_FORWARD);
-          VecGhostUpdateEnd(x, INSERT_VALUES, SCATTER_FORWARD);
-        });
-    // The built-in test keeps residual0 across solves and sees only u. A
-    // signal on any rank ends the solve too ("converged"; the loop then
-    // abandons the step), so that every rank stops at the same iteration.
-    _newton.set_convergence_check([this](const nls::petsc::NewtonSolver&, const Vec r)
-                                  { return converged(r); });
-    // x <- x - dx, and the floating potentials with it (floating.h), once
-    // the solve is checked
-    _newton.set_update([&system](const nls::petsc::NewtonSolver&, const Vec dx, Vec x)
-                       { system.update(dx, x); });
-    _newton.max_it = _settings.newton.max_iterations;
-    _newton.report = false;
-    _newton.error_on_nonconvergence = false;
+    _newton.set_callbacks(
+        {.F = [&system](const Vec x, Vec r) { system.F(x, r); },
+         .b = system.b.vec(),
+         .J = [&system](const Vec x, Mat A) { system.J(x, A); },
+         .A = system.A.mat(),
+         // A signal on any rank ends the solve too ("converged"; the loop
+         // then abandons the step), so that every rank stops at the same
+         // iteration.
+         .converged = [this](const Vec r) { return converged(r); },
+         // x <- x - dx, and the floating potentials with it (floating.h),
+         // once the solve is checked
+         .update = [&system](const Vec dx, Vec x) { system.update(dx, x); }});
   }
 
   /// The acceptance rule (acceptance.h) at an iterate
@@ -236,7 +226,7 @@ private:
     VecGetLocalSize(r, &n);
     const PetscScalar* ra;
     VecGetArrayRead(r, &ra);
-    _acceptance.fields = _monitor.check(_problem.x->x()->array().subspan(0, n),
+    _acceptance.fields = _monitor.check(compat::values(*_problem.x->x()).subspan(0, n),
                                         std::span<const double>(ra, n));
     VecRestoreArrayRead(r, &ra);
     // an update that solved a locally linear problem exactly needs no
@@ -316,7 +306,7 @@ private:
     _monitor.history.clear();
     _acceptance = {};
     const int f0 = _system->factorisation.count;
-    common::Timer newton_timer("piezocontact: Newton solve");
+    compat::Timer newton_timer("piezocontact: Newton solve");
     std::pair<int, bool> outcome;
     Attempt attempt;
     try
@@ -423,19 +413,19 @@ private:
 
   json timing_now() const
   {
-    return timing(*_system, _total.elapsed()[0], _newton_s,
+    return timing(*_system, _total.elapsed(), _newton_s,
                   callback_seconds(*_system) - _callbacks_before, _newton_its);
   }
 
-  const common::Timer _total{"piezocontact: run"};
+  const compat::Timer _total{"piezocontact: run"};
   Problem& _problem;
   const RunSettings& _settings;
   const MPI_Comm _comm;
   Record _record;
   FieldwiseConvergence _monitor;
   la::petsc::Vector _x_vec;
-  nls::petsc::NewtonSolver _newton;
-  const ScopedPetscOptions _options;
+  const ScopedPetscOptions _options; ///< before the Newton's KSP reads them
+  Newton _newton;
   std::unique_ptr<NonlinearSystem> _system;
   StepControl _steps;
   std::span<double> _xa, _xp;

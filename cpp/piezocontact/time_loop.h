@@ -1,4 +1,4 @@
-// Backward Euler time loop on a Problem's forms with dolfinx's NewtonSolver:
+// Backward Euler time loop on a Problem's forms with Newton (newton.h):
 // predictor, per-field convergence, exact LU reuse, step halving, signals,
 // checkpoints and --resume; each accepted step goes to the outputs, the
 // summary and an observer.

@@ -5,7 +5,7 @@
 
 #include "config.h"
 
-#include <dolfinx/common/Timer.h>
+#include "compat.h"
 #include <string>
 
 namespace piezocontact
@@ -36,6 +36,6 @@ public:
 
 private:
   OperationStats& _stats;
-  dolfinx::common::Timer _timer;
+  compat::Timer _timer;
 };
 } // namespace piezocontact
