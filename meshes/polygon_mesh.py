@@ -13,12 +13,11 @@ from pathlib import Path
 import gmsh
 from dolfinx import io
 from physical_groups import grade
-from dolfinx.io import gmshio
 from mpi4py import MPI
 
 
 def _load_compat():
-    """The package's _compat (what differs between dolfinx 0.5 and 0.9),
+    """The package's _compat (what differs between dolfinx releases),
     from this source tree: importing the package would need its bindings."""
     path = Path(__file__).resolve().parents[1] / "python" / "piezocontact" / "_compat.py"
     spec = importlib.util.spec_from_file_location("piezocontact_compat", path)
@@ -66,7 +65,7 @@ def write_mesh(points, edge_names, size, output, comm=MPI.COMM_WORLD, graded=Non
         if comm.rank == 0:
             gmsh.model.add(output.stem)
             boundaries = build_polygon(points, edge_names, size, graded)
-        mesh, _, facet_tags = gmshio.model_to_mesh(gmsh.model, comm, 0, gdim=2)
+        mesh, _, facet_tags = compat.gmsh_model_to_mesh(gmsh.model, comm, 0, 2)
     finally:
         gmsh.finalize()
     boundaries = comm.bcast(boundaries, root=0)

@@ -35,6 +35,7 @@
 #include <dolfinx/mesh/utils.h>
 #include <dolfinx/refinement/refine.h>
 #include <functional>
+#include <iterator>
 #include <map>
 #include <memory>
 #include <numeric>
@@ -541,7 +542,17 @@ create_form(const ufcx_form& f, const std::vector<std::shared_ptr<const Function
       mesh->topology_mutable()->create_connectivity(dim, tdim);
       mesh->topology_mutable()->create_connectivity(tdim, dim);
     }
-#if PIEZO_DOLFINX_011 // the dimension follows from the type
+#if PIEZO_DOLFINX_011
+    // 0.11 integrates an exterior-facet integral over any facet given (one
+    // side of an interior one); dolfinx.fem.form, and 0.5 and 0.9 here, keep
+    // the exterior ones: an internal electrode's ds charge stays 0 as there
+    if (type == dfx::fem::IntegralType::exterior_facet)
+    {
+      const auto exterior = dfx::mesh::exterior_facet_indices(*mesh->topology());
+      std::vector<std::int32_t> kept;
+      std::ranges::set_intersection(piece, exterior, std::back_inserter(kept));
+      piece = std::move(kept);
+    }
     domain = dfx::fem::compute_integration_domains(type, *mesh->topology(), piece);
 #else
     domain = dfx::fem::compute_integration_domains(type, *mesh->topology(), piece, dim);

@@ -2,14 +2,32 @@
 
 #include <dolfinx/la/petsc.h>
 #include <dolfinx/nls/NewtonSolver.h>
+#include <iostream>
+#include <optional>
 
 namespace piezocontact
 {
 using dolfinx::nls::petsc::NewtonSolver;
 
+namespace
+{
+/// std::cerr swallowed for a scope: dolfinx 0.11's NewtonSolver constructor
+/// writes a deprecation notice there, on every rank and every run, and our
+/// stderr carries one-line errors only
+struct SilencedCerr
+{
+  SilencedCerr() : saved(std::cerr.rdbuf(nullptr)) {}
+  ~SilencedCerr() { std::cerr.rdbuf(saved); } // also clears the bad bit
+  SilencedCerr(const SilencedCerr&) = delete;
+  SilencedCerr& operator=(const SilencedCerr&) = delete;
+  std::streambuf* saved;
+};
+} // namespace
+
 struct Newton::Impl
 {
-  explicit Impl(MPI_Comm comm) : solver(comm) {}
+  explicit Impl(MPI_Comm comm) : solver(comm) { quiet.reset(); }
+  std::optional<SilencedCerr> quiet{std::in_place}; ///< while `solver` is made
   NewtonSolver solver;
 };
 

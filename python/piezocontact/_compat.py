@@ -1,6 +1,7 @@
 """The one module where piezocontact meets the parts of dolfinx's Python API
-that differ between dolfinx 0.5.2 (Debian 12) and 0.9.0 (Debian 13, with
-dolfinx_mpc 0.9.1, UFL 2024.2, numpy 2): the package, the demos, the mesh
+that differ between dolfinx 0.5.2 (Debian 12), 0.9.0 (Debian 13, with
+dolfinx_mpc 0.9.1, UFL 2024.2, numpy 2) and 0.11.0 (Debian unstable, with
+dolfinx_mpc 0.11, UFL 2025, Python 3.14): the package, the demos, the mesh
 scripts and the tests call these instead of testing versions.
 
     cpp(obj)                       0.9 wraps every C++ object in ._cpp_object
@@ -24,13 +25,20 @@ scripts and the tests call these instead of testing versions.
     write_meshtags(xdmf, tags, msh)  XDMFFile.write_meshtags wants the geometry
     mpc_backsubstitution(mpc, f)   dolfinx_mpc's homogenize, backsubstitution
                                    take the Function in 0.9, its Vec in 0.5
+    create_vector(form)            0.11's fem.petsc.create_vector takes the
+                                   form's space, not the form
+    gmsh_model_to_mesh(model, comm, rank, gdim)  dolfinx.io.gmshio became
+                                   dolfinx.io.gmsh (0.10), returning MeshData
+    create_petsc_vector(imap, bs)  la.create_petsc_vector ->
+                                   la.petsc.create_vector([(imap, bs)]) (0.10)
 
 Bridged by calls that work on both, with no shim:
     elements of UFL (ufl.VectorElement, ufl.Cell(gdim) are gone): the
       elements come from forms/entry_points.elements (basix.ufl in 0.9)
     fem.petsc.apply_lifting(..., scale=) became alpha=: pass it positionally
     dolfinx.fem.petsc is no longer imported by dolfinx.fem: import it
-    dolfinx.cpp.la.petsc.create_vector is gone: dolfinx.la.create_petsc_vector
+    dolfinx.cpp.la.petsc.create_vector is gone: create_petsc_vector below
+    fem.petsc.assemble_matrix(diagonal=) became diag= (0.10): positional
     dolfinx_mpc.cpp.mpc.create_matrix takes the C++ Form: cpp(form)
 
 This module imports nothing of piezocontact (meshes/polygon_mesh.py loads it
@@ -44,8 +52,11 @@ from dolfinx import cpp as _cpp
 from dolfinx import fem, geometry
 from dolfinx import mesh as dmesh
 
-# 0.5.2 or 0.9.0: the releases in Debian 12 and 13 (0.6-0.8 are neither)
-DOLFINX_09 = tuple(int(p) for p in dolfinx.__version__.split(".")[:2]) >= (0, 9)
+# 0.5.2, 0.9.0 or 0.11.0: the releases in Debian 12, 13 and unstable (0.6-0.8
+# and 0.10 are none of them)
+_VERSION = tuple(int(p) for p in dolfinx.__version__.split(".")[:2])
+DOLFINX_09 = _VERSION >= (0, 9)
+DOLFINX_011 = _VERSION >= (0, 10)
 
 
 def cpp(obj):
@@ -166,3 +177,28 @@ def mpc_backsubstitution(mpc, f):
     target = f if DOLFINX_09 else f.vector
     mpc.homogenize(target)
     mpc.backsubstitution(target)
+
+
+def create_vector(form):
+    """A ghosted PETSc Vec for a linear form's assembly."""
+    if DOLFINX_011:
+        return fem.petsc.create_vector(form.function_spaces[0])
+    return fem.petsc.create_vector(form)
+
+
+def gmsh_model_to_mesh(model, comm, rank, gdim):
+    """(mesh, cell tags, facet tags) of the gmsh model on `rank`."""
+    if DOLFINX_011:
+        from dolfinx.io import gmsh as gmsh_io
+        data = gmsh_io.model_to_mesh(model, comm, rank, gdim=gdim)
+        return data.mesh, data.cell_tags, data.facet_tags
+    from dolfinx.io import gmshio
+    return gmshio.model_to_mesh(model, comm, rank, gdim=gdim)
+
+
+def create_petsc_vector(index_map, bs):
+    """A ghosted PETSc Vec on an index map with block size bs."""
+    if DOLFINX_011:
+        import dolfinx.la.petsc
+        return dolfinx.la.petsc.create_vector([(index_map, bs)])
+    return dolfinx.la.create_petsc_vector(index_map, bs)

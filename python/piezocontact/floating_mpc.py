@@ -20,11 +20,11 @@ backsubstitution: it adds) before each assembly.
 import dolfinx_mpc
 import dolfinx_mpc.cpp
 import numpy as np
-from dolfinx import fem, la
+from dolfinx import fem
 from mpi4py import MPI
 from petsc4py import PETSc
 
-from ._compat import cpp, dirichletbcs, mpc_backsubstitution, petsc_vec
+from ._compat import cpp, create_petsc_vector, dirichletbcs, mpc_backsubstitution, petsc_vec
 
 _NONE = np.iinfo(np.int64).max
 
@@ -70,7 +70,7 @@ class FloatingConstraint:
 
     def create_vector(self):
         V = self.mpc.function_space
-        return la.create_petsc_vector(V.dofmap.index_map, V.dofmap.index_map_bs)
+        return create_petsc_vector(V.dofmap.index_map, V.dofmap.index_map_bs)
 
     def create_matrix(self):
         return dolfinx_mpc.cpp.mpc.create_matrix(cpp(self.J_form), self.mpc._cpp_object)

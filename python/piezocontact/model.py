@@ -119,7 +119,9 @@ def set_constants(cfg, shared, materials, loads):
     m.constants = cpp_map(shared)
     m.materials = {r: cpp_map(mat) for r, mat in materials.items()}
     m.loads = {b: cpp_map(load) for b, load in loads.items()}
-    m.sources = sources(shared["k"].ufl_domain().geometric_dimension(), "t" in shared)
+    # the coordinates' length: UFL 2025 made geometric_dimension a property
+    gdim = ufl.SpatialCoordinate(shared["k"].ufl_domain()).ufl_shape[0]
+    m.sources = sources(gdim, "t" in shared)
     cpp.set_constants(json.dumps(cfg), m)
 
 

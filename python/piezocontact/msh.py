@@ -16,10 +16,9 @@ from pathlib import Path
 
 import gmsh
 from dolfinx import io
-from dolfinx.io import gmshio
 from mpi4py import MPI
 
-from ._compat import write_meshtags
+from ._compat import gmsh_model_to_mesh, write_meshtags
 
 
 def physical_names(dim):
@@ -43,7 +42,7 @@ def convert(source, output):
         # a 2D mesh lies in the plane z = 0: its geometry is (x, y)
         x = gmsh.model.mesh.getNodes()[1].reshape(-1, 3)
         gdim = 3 if tdim == 3 or abs(x[:, 2]).max(initial=0) > 0 else 2
-        mesh, cell_tags, facet_tags = gmshio.model_to_mesh(gmsh.model, MPI.COMM_SELF, 0, gdim=gdim)
+        mesh, cell_tags, facet_tags = gmsh_model_to_mesh(gmsh.model, MPI.COMM_SELF, 0, gdim)
     finally:
         gmsh.finalize()
     if mesh.geometry.dim != mesh.topology.dim:

@@ -17,7 +17,7 @@ from dolfinx import fem
 from petsc4py import PETSc
 
 from . import cpp
-from ._compat import dirichletbcs, petsc_vec
+from ._compat import create_vector, dirichletbcs, petsc_vec
 
 # Converged when each field's increment is this small against the field;
 # far below the 1e-8 at which the engines are compared
@@ -42,7 +42,7 @@ class _Newton:
             self.bcs = self.floating.bcs
             self.b, self.A = self.floating.create_vector(), self.floating.create_matrix()
         else:
-            self.b = fem.petsc.create_vector(self.F_form)
+            self.b = create_vector(self.F_form)
             self.A = fem.petsc.create_matrix(self.J_form)
         self.snes = PETSc.SNES().create(comm)
         self.snes.setFunction(self._F, self.b)

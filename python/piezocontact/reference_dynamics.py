@@ -21,11 +21,11 @@ import os
 
 import dolfinx.fem.petsc  # noqa: F401
 import numpy as np
-from dolfinx import fem, la
+from dolfinx import fem
 from petsc4py import PETSc
 
 from . import cpp
-from ._compat import dirichletbcs, mpc_backsubstitution, petsc_vec
+from ._compat import create_petsc_vector, dirichletbcs, mpc_backsubstitution, petsc_vec
 
 TWO_PI = 2 * math.pi
 
@@ -53,7 +53,7 @@ class _Assembly:
             A = dolfinx_mpc.assemble_matrix(form, self.floating.mpc, bcs=self.bcs,
                                             diagval=diagonal)
         else:
-            A = fem.petsc.assemble_matrix(form, bcs=self.bcs, diagonal=diagonal)
+            A = fem.petsc.assemble_matrix(form, self.bcs, diagonal)  # keyword: _compat
         A.assemble()
         return A
 
@@ -90,7 +90,7 @@ class _Assembly:
             for f in forms:
                 b.axpy(1.0, dolfinx_mpc.assemble_vector(f, self.floating.mpc))
         else:
-            b = la.create_petsc_vector(self.model.W.dofmap.index_map,
+            b = create_petsc_vector(self.model.W.dofmap.index_map,
                                        self.model.W.dofmap.index_map_bs)
             b.set(0.0)
             for f in forms:
