@@ -13,10 +13,23 @@
 # there unchanged and no release's build overwrites another's. The mounts
 # live in a private mount namespace: they vanish with the command, however
 # it ends, and never show on the host.
+# `scripts/debian.sh --tools` installs the host's debootstrap (if missing)
+# and stops: CI does it before anything else can run apt beside it.
 set -euo pipefail
-usage="usage: scripts/debian.sh trixie|sid [COMMAND...]"
+usage="usage: scripts/debian.sh trixie|sid [COMMAND...] | --tools"
+SUDO=""
+[ "$(id -u)" -eq 0 ] || SUDO="sudo"
+
+host_tools() {
+  command -v debootstrap >/dev/null || {
+    $SUDO apt-get update -q
+    DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q debootstrap
+  }
+}
+
 RELEASE=${1:?$usage}
 shift
+[ "$RELEASE" != --tools ] || { host_tools; exit 0; }
 case "$RELEASE" in
   trixie | sid) ;;
   *) echo "debian.sh: release '$RELEASE' is not trixie or sid; $usage" >&2; exit 2 ;;
@@ -25,9 +38,6 @@ CHECKOUT=$(cd "$(dirname "$0")/.." && pwd)
 ROOT=${PIEZO_ROOTS:-${HOME:-/root}/.cache/piezocontact}/$RELEASE
 MIRROR=${PIEZO_MIRROR:-http://deb.debian.org/debian}
 READY=.piezocontact-ready
-
-SUDO=""
-[ "$(id -u)" -eq 0 ] || SUDO="sudo"
 
 # Enter the root: proc, sys, dev, the checkout and its build dirs mounted in
 # a private namespace; a clean environment (plus what the tests read)
@@ -56,10 +66,7 @@ enter() {
 
 make_root() {
   echo "debian.sh: making the $RELEASE root in $ROOT (once; ~5 min, 3.5 GB)" >&2
-  command -v debootstrap >/dev/null || {
-    $SUDO apt-get update -q
-    DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q debootstrap
-  }
+  host_tools
   # Made aside and moved in place: an interrupted attempt is never taken
   # for a root
   local partial="$ROOT.partial"
