@@ -199,6 +199,6 @@ def gmsh_model_to_mesh(model, comm, rank, gdim):
 def create_petsc_vector(index_map, bs):
     """A ghosted PETSc Vec on an index map with block size bs."""
     if DOLFINX_011:
-        import dolfinx.la.petsc
-        return dolfinx.la.petsc.create_vector([(index_map, bs)])
+        from dolfinx.la import petsc as la_petsc  # not `import dolfinx...`: a local name
+        return la_petsc.create_vector([(index_map, bs)])
     return dolfinx.la.create_petsc_vector(index_map, bs)
