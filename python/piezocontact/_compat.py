@@ -1,7 +1,7 @@
 """The one module where piezocontact meets the parts of dolfinx's Python API
 that differ between dolfinx 0.5.2 (Debian 12), 0.9.0 (Debian 13, with
 dolfinx_mpc 0.9.1, UFL 2024.2, numpy 2) and 0.11.0 (Debian unstable, with
-dolfinx_mpc 0.11, UFL 2025, Python 3.14): the package, the demos, the mesh
+dolfinx_mpc 0.11, UFL 2026.1, Python 3.14): the package, the demos, the mesh
 scripts and the tests call these instead of testing versions.
 
     cpp(obj)                       0.9 wraps every C++ object in ._cpp_object
