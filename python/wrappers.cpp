@@ -438,6 +438,36 @@ PIEZO_MODULE(cpp, m)
       "The mesh of a validated config: the built-in square, or an XDMF file with "
       "facet tags and its NAME.boundaries.json");
   m.def(
+      "prepare_mesh",
+      [](const std::string& cfg, const std::string& source, const std::string& out_dir,
+         MPICommWrapper comm, const PyMeshConverter& convert) -> std::optional<std::string>
+      {
+        const auto file = prepare_mesh(json::parse(cfg), source, out_dir, comm.get(), convert);
+        if (!file)
+          return std::nullopt;
+        return file->string();
+      },
+      py::arg("cfg"), py::arg("source"), py::arg("out_dir"), py::arg("comm"), py::arg("convert"),
+      "The XDMF file of a config's mesh (None: built in); gmsh and msh meshes are made into "
+      "OUT_DIR/mesh (mesh.h)");
+  m.def(
+      "name_mesh",
+      [](std::shared_ptr<compat::Mesh> mesh, std::shared_ptr<const compat::MeshTags> facet_tags,
+         std::shared_ptr<const compat::MeshTags> cell_tags,
+         const std::map<std::string, int>& boundaries, const std::map<std::string, int>& regions,
+         const std::string& source)
+      { return name_mesh(mesh, facet_tags, cell_tags, boundaries, regions, source); },
+      py::arg("mesh"), nullable("facet_tags"), nullable("cell_tags"), py::arg("boundaries"),
+      py::arg("regions"), py::arg("source"),
+      "A mesh given as dolfinx objects, its tags named {name: tag value} (mesh.h)");
+  m.def(
+      "checked_config",
+      [](const std::string& cfg, const NamedMesh& mesh, MPICommWrapper comm,
+         const std::string& source)
+      { return checked_config(json::parse(cfg), mesh, comm.get(), source).dump(); },
+      py::arg("cfg"), py::arg("mesh"), py::arg("comm"), py::arg("source"),
+      "A validated config checked against its mesh, materials resolved (driver.h)");
+  m.def(
       "model_spec", [](const std::string& cfg) { return model_spec(json::parse(cfg)); },
       py::arg("cfg"), "Which pieces of the mesh carry which terms, from a validated config");
   m.def(
@@ -466,11 +496,11 @@ PIEZO_MODULE(cpp, m)
          MPICommWrapper comm, const PyModelFactory& make_model,
          const PyMeshConverter& convert_mesh, const std::optional<PyEngine>& loop,
          const std::optional<std::function<void(int, const std::string&)>>& observer,
-         const std::optional<PyAnalysis>& dynamics)
+         const std::optional<PyAnalysis>& dynamics, const std::optional<NamedMesh>& mesh)
       {
         const json summary = resume ? json::parse(*resume) : json();
         RunRequest request{json::parse(cfg), output, source, solver, progress,
-                           resume ? &summary : nullptr, convert_mesh};
+                           resume ? &summary : nullptr, convert_mesh, mesh ? &*mesh : nullptr};
         StepObserver on_step = nullptr;
         if (observer)
           on_step = [&observer](int n, const json& step) { (*observer)(n, step.dump()); };
@@ -482,8 +512,9 @@ PIEZO_MODULE(cpp, m)
       py::arg("cfg"), py::arg("output"), py::arg("source"), py::arg("solver"),
       py::arg("progress"), nullable("resume"), py::arg("comm"), py::arg("make_model"),
       py::arg("convert_mesh"), py::arg("engine") = py::none(), py::arg("observer") = py::none(),
-      py::arg("analysis") = py::none(),
-      "A run from a validated config (driver.h); the summary as JSON text");
+      py::arg("analysis") = py::none(), py::arg("mesh") = py::none(),
+      "A run from a validated config (driver.h), on its mesh or the one given; output '': "
+      "in memory; the summary as JSON text");
   m.def(
       "command_line",
       [](const std::string& program, const std::vector<std::string>& args, MPICommWrapper comm,

@@ -749,7 +749,7 @@ void check_mesh_keys(const json& mesh, const std::string& source)
   const std::string type = mesh["type"];
   const std::map<std::string, std::vector<std::string>> needed_by_type
       = {{"unit_square", {"n"}}, {"box", {"n", "size"}}, {"gmsh", {"geometry", "size"}},
-         {"xdmf", {"path"}}, {"msh", {"path"}}};
+         {"xdmf", {"path"}}, {"msh", {"path"}}, {"dolfinx", {}}};
   const auto& needed = needed_by_type.at(type);
   for (const auto& k : needed)
     if (!mesh.contains(k))

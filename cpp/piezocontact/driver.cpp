@@ -212,13 +212,26 @@ Model model_of(const ModelFactory& make_model, const NamedMesh& mesh, const Mode
 }
 } // namespace
 
-json run_config(const RunRequest& request, MPI_Comm comm, const ModelFactory& make_model,
-                const Engine& engine, const StepObserver& observer, const Analysis& analysis)
+json checked_config(const json& cfg, const NamedMesh& mesh, MPI_Comm comm,
+                    const std::string& source)
 {
-  const OutputLock lock(request.output, request.source, comm);
-  const RunSettings settings = run_settings(request.cfg);
-  check_petsc_options(settings.petsc_options, settings.linear, request.source);
-  const QuietPetscErrors quiet; // PETSc failures become exceptions, not dumps
+  check_every_rank_has_cells(mesh, comm, source);
+  const int d = mesh.mesh->geometry().dim();
+  const json checked = check_dimension(cfg, d, source);
+  check_names(checked, mesh, source);
+  check_half_plane(checked, mesh, comm, source);
+  return resolve_materials(checked, d, source);
+}
+
+namespace
+{
+/// The mesh of a run: the one given, or the config's (made by its tool
+/// into the output folder, or named by the summary resumed)
+std::pair<NamedMesh, std::optional<std::filesystem::path>> mesh_of(const RunRequest& request,
+                                                                   MPI_Comm comm)
+{
+  if (request.mesh)
+    return {*request.mesh, std::nullopt};
   std::optional<std::filesystem::path> mesh_file;
   if (!request.resume)
     mesh_file = prepare_mesh(request.cfg, request.source, request.output, comm,
@@ -227,14 +240,32 @@ json run_config(const RunRequest& request, MPI_Comm comm, const ModelFactory& ma
     mesh_file = (*request.resume)["mesh_file"].get<std::string>();
   if (mesh_file)
     mesh_file = std::filesystem::absolute(*mesh_file);
-  const NamedMesh mesh = build_mesh(request.cfg, comm, mesh_file, request.source);
-  check_every_rank_has_cells(mesh, comm, request.source);
+  return {build_mesh(request.cfg, comm, mesh_file, request.source), mesh_file};
+}
+} // namespace
+
+json run_config(const RunRequest& request, MPI_Comm comm, const ModelFactory& make_model,
+                const Engine& engine, const StepObserver& observer, const Analysis& analysis)
+{
+  const bool in_memory = request.output.empty();
+  if (in_memory and request.resume)
+    throw ConfigError(printable(request.source, 200) + ": cannot resume a run kept in memory");
+  const json& type = request.cfg["mesh"]["type"];
+  if (in_memory and !request.mesh and (type == "gmsh" or type == "msh"))
+    throw ConfigError(printable(request.source, 200) + ": mesh.type = " + type.dump()
+                      + ": a run kept in memory is given its mesh (the mesh tool writes into "
+                        "the output folder; piezocontact.Problem.from_config makes it in a "
+                        "temporary one)");
+  std::optional<OutputLock> lock;
+  if (!in_memory)
+    lock.emplace(request.output, request.source, comm);
+  const RunSettings settings = run_settings(request.cfg);
+  check_petsc_options(settings.petsc_options, settings.linear, request.source);
+  const QuietPetscErrors quiet; // PETSc failures become exceptions, not dumps
+  const auto [mesh, mesh_file] = mesh_of(request, comm);
   const int d = mesh.mesh->geometry().dim();
-  const json checked = check_dimension(request.cfg, d, request.source);
-  check_names(checked, mesh, request.source);
   // from here on, every material is its tensors in the mesh frame
-  check_half_plane(checked, mesh, comm, request.source);
-  const json cfg = resolve_materials(checked, d, request.source);
+  const json cfg = checked_config(request.cfg, mesh, comm, request.source);
   const ModelSpec spec = model_spec(cfg);
   Model model = model_of(make_model, mesh, spec, request.source);
   set_constants(cfg, model);
@@ -252,7 +283,8 @@ json run_config(const RunRequest& request, MPI_Comm comm, const ModelFactory& ma
   {
     summary = {{"solver", request.solver},
                {"config", cfg},
-               {"config_file", std::filesystem::absolute(request.source).string()},
+               {"config_file", request.mesh ? request.source
+                                            : std::filesystem::absolute(request.source).string()},
                {"mesh_file", mesh_file ? json(mesh_file->string()) : json(nullptr)},
                {"boundary_lengths", boundary_measures(problem)},
                {"units", units_of(cfg, d)}};

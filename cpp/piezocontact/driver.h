@@ -39,13 +39,22 @@ using Analysis = std::function<json(Problem& problem, const RunSettings& setting
 struct RunRequest
 {
   json cfg;                         ///< validated (configure / load_config)
-  std::filesystem::path output;     ///< the output directory
+  std::filesystem::path output;     ///< the output directory; empty: in memory, no file
+                                    ///< written (no checkpoint, so no resume)
   std::string source = "config";    ///< names the config in messages
   std::string solver = "cpp";       ///< recorded in the summary as "solver"
   bool progress = true;             ///< one line per step on rank 0
   const json* resume = nullptr;     ///< the summary to continue (resumable_summary)
   MeshConverter convert_mesh;       ///< makes "gmsh" and "msh" meshes (mesh.h)
+  const NamedMesh* mesh = nullptr;  ///< a mesh given (name_mesh), instead of the config's
 };
+
+/// The config checked against its mesh (a process without cells, the
+/// dimension, the names of boundaries and regions, the axisymmetric
+/// half-plane) with every material resolved to its tensors in the mesh
+/// frame: what the model is built from. Throws ConfigError. Collective.
+json checked_config(const json& cfg, const NamedMesh& mesh, MPI_Comm comm,
+                    const std::string& source);
 
 /// Mesh, model, Problem, time loop; the run's summary. Throws ConfigError,
 /// NewtonFailure, OutputError, Interrupted.

@@ -115,7 +115,7 @@ json modal(Problem& p, const RunSettings& s, const fs::path& dir, json summary,
                     {"electrodes", electrodes}});
   }
   summary["modes"] = list;
-  if (s.output.xdmf and !modes.empty())
+  if (s.output.xdmf and !modes.empty() and !dir.empty())
     write_frames(p, dir / "modes.xdmf", int(modes.size()), {p.u, p.phi},
                  [&](int i)
                  {
@@ -255,7 +255,7 @@ json harmonic(Problem& p, const RunSettings& s, const fs::path& dir, json summar
   }
   summary["harmonic"] = list;
   summary["analysis_timing"] = harmonic_timing(responses);
-  if (s.output.xdmf)
+  if (s.output.xdmf and !dir.empty())
     write_responses(p, dir / "harmonic.xdmf", responses);
   return summary;
 }
@@ -276,8 +276,9 @@ json analyse(Problem& p, const RunSettings& s, const fs::path& dir, json summary
   summary["dofs"] = p.W->dofmap()->index_map->size_global() * p.W->dofmap()->index_map_bs();
   if (!summary.contains("status") or summary["status"] != "failed")
     summary["status"] = "completed";
-  collectively(p.comm, rank_of(p.comm) == 0,
-               [&] { write_json_atomic(dir / "summary.json", summary); });
+  if (!dir.empty()) // else in memory
+    collectively(p.comm, rank_of(p.comm) == 0,
+                 [&] { write_json_atomic(dir / "summary.json", summary); });
   if (summary["status"] == "failed")
     throw AnalysisFailure(summary["error"].get<std::string>());
   return summary;

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <dolfinx/io/XDMFFile.h>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 namespace piezocontact
@@ -206,7 +207,7 @@ prepare_mesh(const json& cfg, const std::string& source, const std::filesystem::
 {
   const json& m = cfg["mesh"];
   const std::string type = m["type"];
-  if (type == "unit_square" or type == "box")
+  if (type == "unit_square" or type == "box" or type == "dolfinx")
     return std::nullopt;
   const std::string key = type == "gmsh" ? "geometry" : "path";
   const auto path = resolve(m[key].get<std::string>(), source);
@@ -308,7 +309,115 @@ NamedMesh build_mesh(const json& cfg, MPI_Comm comm,
 {
   if (mesh_file)
     return read_xdmf(*mesh_file, comm, source);
+  if (cfg["mesh"]["type"] == "dolfinx")
+    throw ConfigError(printable(source, 200) + ": mesh.type = \"dolfinx\": a mesh given as dolfinx "
+                      "objects, which only the Python API takes (piezocontact.Problem)");
   return cfg["mesh"]["type"] == "box" ? box(cfg, comm) : unit_square(cfg, comm);
 }
 
+} // namespace piezocontact
+
+namespace piezocontact
+{
+namespace
+{
+/// A MeshTags given by a caller: of the entities it names, every index a
+/// local entity. Throws ConfigError naming `key`.
+void check_tags(const compat::Mesh& mesh, const compat::MeshTags& tags, int dim,
+                const std::string& key, const std::string& where)
+{
+  if (tags.dim() != dim)
+    throw ConfigError(where + key + ": tags of entities of dimension " + std::to_string(tags.dim())
+                      + ", expected " + std::to_string(dim));
+  const auto map = compat::topology(mesh).index_map(dim);
+  const std::int32_t count = map ? map->size_local() + map->num_ghosts() : 0;
+  const auto indices = tags.indices();
+  if (!indices.empty() and (*std::min_element(indices.begin(), indices.end()) < 0
+                            or *std::max_element(indices.begin(), indices.end()) >= count))
+    throw ConfigError(where + key + ": an index outside the mesh's " + std::to_string(count)
+                      + " local entities of dimension " + std::to_string(dim)
+                      + " (tags of another mesh?)");
+}
+
+/// Every name's tag is a positive value that some entity carries (on some
+/// process): a name of no entity is a mistake, not an empty boundary
+void check_names_of_tags(const std::map<std::string, int>& names, const compat::MeshTags* tags,
+                         const std::string& key, const std::string& where, MPI_Comm comm)
+{
+  std::vector<int> carried(names.size(), 0);
+  if (tags)
+  {
+    const auto values = tags->values();
+    const std::set<std::int32_t> present(values.begin(), values.end());
+    std::size_t i = 0;
+    for (const auto& [_, tag] : names)
+      carried[i++] = present.contains(tag) ? 1 : 0;
+  }
+  MPI_Allreduce(MPI_IN_PLACE, carried.data(), int(carried.size()), MPI_INT, MPI_MAX, comm);
+  std::size_t i = 0;
+  for (const auto& [name, tag] : names)
+  {
+    const std::string named = where + key + "." + printable(name, 60) + " = " + std::to_string(tag);
+    if (tag < 1)
+      throw ConfigError(named + ": expected a positive integer (a tag value)");
+    if (!carried[i++])
+      throw ConfigError(named + ": no entity of the mesh carries this tag");
+  }
+}
+} // namespace
+
+NamedMesh name_mesh(std::shared_ptr<compat::Mesh> mesh,
+                    std::shared_ptr<const compat::MeshTags> facet_tags,
+                    std::shared_ptr<const compat::MeshTags> cell_tags,
+                    const std::map<std::string, int>& boundaries,
+                    const std::map<std::string, int>& regions, const std::string& source)
+{
+  const std::string where = printable(source, 200) + ": ";
+  const MPI_Comm comm = mesh->comm();
+  const auto& topology = compat::topology(*mesh);
+  const int tdim = topology.dim();
+  if (topology.cell_type() != dolfinx::mesh::CellType::triangle
+      and topology.cell_type() != dolfinx::mesh::CellType::tetrahedron)
+    throw ConfigError(where + "mesh: cells of type " + dolfinx::mesh::to_string(topology.cell_type())
+                      + ": only triangles and tetrahedra are supported");
+  int size = 1;
+  MPI_Comm_size(comm, &size);
+  std::int64_t ghosts = topology.index_map(tdim)->num_ghosts();
+  MPI_Allreduce(MPI_IN_PLACE, &ghosts, 1, MPI_INT64_T, MPI_SUM, comm);
+  if (size > 1 and ghosts == 0)
+    throw ConfigError(where + "mesh: distributed without ghost cells: create it with "
+                      "ghost_mode=dolfinx.mesh.GhostMode.shared_facet (the contact, electrode "
+                      "and region integrals need the cells across process boundaries)");
+  if (facet_tags)
+    check_tags(*mesh, *facet_tags, tdim - 1, "facet_tags", where);
+  if (cell_tags)
+    check_tags(*mesh, *cell_tags, tdim, "cell_tags", where);
+  if (!regions.empty() and !cell_tags)
+    throw ConfigError(where + "region_names: regions need cell_tags");
+  check_names_of_tags(boundaries, facet_tags.get(), "boundary_names", where, comm);
+  check_names_of_tags(regions, cell_tags.get(), "region_names", where, comm);
+  compat::topology_mutable(*mesh).create_connectivity(tdim - 1, tdim);
+
+  NamedMesh out;
+  out.mesh = mesh;
+  auto tagged = [&](const compat::MeshTags* tags, int dim, const std::map<std::string, int>& names,
+                    std::map<std::string, int>& slot_of)
+  {
+    std::vector<std::int32_t> indices, values;
+    if (tags)
+    {
+      const auto i = tags->indices();
+      const auto v = tags->values();
+      indices.assign(i.begin(), i.end());
+      values.assign(v.begin(), v.end());
+    }
+    return renumbered(mesh, dim, json(names), indices, values, slot_of);
+  };
+  out.facet_tags = tagged(facet_tags.get(), tdim - 1, boundaries, out.tag_of);
+  if (regions.empty())
+    one_region(out);
+  else
+    out.cell_tags = tagged(cell_tags.get(), tdim, regions, out.region_of);
+  return out;
+}
 } // namespace piezocontact

@@ -46,4 +46,16 @@ void check_names(const json& cfg, const NamedMesh& mesh, const std::string& sour
 NamedMesh build_mesh(const json& cfg, MPI_Comm comm,
                      const std::optional<std::filesystem::path>& mesh_file,
                      const std::string& source);
+
+/// A mesh given as dolfinx objects (the Python API): its facet tags and
+/// cell tags (either may be null) named by `boundaries` and `regions`
+/// ({name: tag value}), renumbered as a file's are, so that the same mesh
+/// read from XDMF and given in memory is the same NamedMesh. No regions:
+/// one region "body". Throws ConfigError naming `source` and the key
+/// (boundary_names, region_names, facet_tags, cell_tags, mesh). Collective.
+NamedMesh name_mesh(std::shared_ptr<compat::Mesh> mesh,
+                    std::shared_ptr<const compat::MeshTags> facet_tags,
+                    std::shared_ptr<const compat::MeshTags> cell_tags,
+                    const std::map<std::string, int>& boundaries,
+                    const std::map<std::string, int>& regions, const std::string& source);
 } // namespace piezocontact

@@ -109,7 +109,8 @@ Record::Record(Problem& problem, const RunSettings& settings, std::filesystem::p
   _summary["status"] = "running";
   try
   {
-    _writer.emplace(problem, settings.output, _dir, _state.step);
+    if (!in_memory())
+      _writer.emplace(problem, settings.output, _dir, _state.step);
   }
   catch (const OutputError& e)
   {
@@ -133,6 +134,8 @@ void Record::read_states(const States& states) const
 
 void Record::write_summary()
 {
+  if (in_memory())
+    return;
   timed(_summaries, "summary",
         [&]
         {
@@ -164,6 +167,8 @@ void Record::fail_on_output(const OutputError& e)
 StepState Record::write_checkpoint(StepState s, const StateViews& states)
 {
   s.events = _summary["events"].size();
+  if (in_memory())
+    return s;
   s.file = "checkpoint/" + numbered("state_%06d.npy", s.step);
   if (rank_of(_problem.comm) == 0)
     std::filesystem::create_directories(_dir / "checkpoint");
@@ -273,7 +278,9 @@ json Record::accept(StepState state, const SolveReport& report, const StateViews
   diagnostics.reset();
   try
   {
-    timed(_step_files, "step files", [&] { _writer->write_step(state.step, report.t, final); });
+    if (_writer)
+      timed(_step_files, "step files",
+            [&] { _writer->write_step(state.step, report.t, final); });
     _state = write_checkpoint(state, states);
     _summary["steps"].push_back(step);
     _summary["checkpoint"] = _state.to_json();
@@ -302,7 +309,8 @@ json Record::accept(StepState state, const SolveReport& report, const StateViews
   if (rank_of(problem.comm) == 0)
   {
     std::error_code ec;
-    std::filesystem::remove(_dir / previous.file, ec);
+    if (!previous.file.empty())
+      std::filesystem::remove(_dir / previous.file, ec);
     if (_progress)
       print_progress(_label, state.step, step);
   }

@@ -105,6 +105,8 @@ public:
   /// Seconds spent writing outputs, per kind, for the summary's timing
   json output_timing() const;
   const std::string& label() const { return _label; }
+  /// No output folder: nothing is written (no files, checkpoint or summary)
+  bool in_memory() const { return _dir.empty(); }
   const json& summary() const { return _summary; }
 
 private:

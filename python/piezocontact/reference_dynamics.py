@@ -124,7 +124,7 @@ class _Assembly:
 
 
 def _write_summary(comm, output, summary):
-    if comm.rank == 0:
+    if comm.rank == 0 and output:  # '': a run kept in memory
         path = os.path.join(output, "summary.json")
         with open(path + ".tmp", "w") as f:
             json.dump(summary, f, indent=1)
