@@ -48,6 +48,10 @@ CASES = {
     "g < 0": (SQUARE, ["contact.gap=-1e-4"], "contact.gap = -0.0001: must be >= 0"),
     "key of another mesh type": (SQUARE, ["mesh.size=0.1"],
                                  "mesh.size: not used with mesh.type \"unit_square\""),
+    "a mesh only the Python API takes": (
+        SQUARE, ['mesh={"type":"dolfinx"}'],
+        "mesh.type = \"dolfinx\": a mesh given as dolfinx objects, which only the Python API "
+        "takes (piezocontact.Problem)"),
     "mesh script missing": (CONTACTOR, ["mesh.geometry=nope.py"],
                             "mesh.geometry = \"nope.py\": no such file"),
     "mesh file unreadable": (SQUARE, ["mesh={\"type\":\"xdmf\",\"path\":\"BROKEN\"}"],
@@ -402,6 +406,16 @@ def main():
             "the \"cpp\" solver`) and `--config` beside it; the reference engine resumes "
             "no run (`cannot resume: the reference engine runs whole`). Checked by "
             "`tests/robustness/test_interrupts.py`.\n",
+            "`piezocontact.Problem` (docs/api.md) raises `ConfigError` with these messages, "
+            "`piezocontact.Problem:` in place of the file, at construction; its own: a tag "
+            "value no entity carries (`boundary_names.top = 99: no entity of the mesh carries "
+            "this tag`), tags of the wrong dimension (`facet_tags: tags of entities of "
+            "dimension 2, expected 1`) or of another mesh (`an index outside the mesh's N "
+            "local entities`), regions without cell tags, cells other than triangles and "
+            "tetrahedra, a mesh distributed without ghost cells (`create it with "
+            "ghost_mode=dolfinx.mesh.GhostMode.shared_facet`), a UFL value where the config "
+            "takes none (`boundaries.left.potential: a UFL value is taken by ...`). Checked by "
+            "`tests/engines/test_problem.py`.\n",
             "| bad input | message (`piezo-contact`, config `demos/...` or a scratch file) |",
             "|---|---|"]
     exe = Path(os.environ.get("PIEZO_BUILD", ROOT / "build")) / "piezo-contact"

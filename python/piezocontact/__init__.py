@@ -4,6 +4,7 @@ FEniCSx plugin: the C++ core (piezocontact.cpp) drives forms that Python
 JIT-compiles from the UFL of forms/.
 
     summary = piezocontact.solve("demos/square.json", output="out/square")
+    solution = piezocontact.Problem(mesh, facet_tags, boundary_names=..., ...).solve()
 """
 
 import sys
@@ -26,5 +27,8 @@ _quiet.install()  # before anything JIT-compiles
 
 from .api import load, solve  # noqa: E402
 from .cpp import ConfigError, Interrupted, NewtonFailure, OutputError  # noqa: E402
+from .data import Boundary, Contact, Material, Time  # noqa: E402
+from .problem import Problem, Solution, Step  # noqa: E402
 
-__all__ = ["solve", "load", "ConfigError", "NewtonFailure", "OutputError", "Interrupted"]
+__all__ = ["Problem", "Solution", "Step", "Material", "Boundary", "Contact", "Time", "solve",
+           "load", "ConfigError", "NewtonFailure", "OutputError", "Interrupted"]

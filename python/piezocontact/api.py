@@ -6,7 +6,7 @@ from pathlib import Path
 
 from mpi4py import MPI
 
-from . import cpp, mesh_tools, model
+from . import cpp, model
 
 ENGINES = {"cpp": "cpp-jit", "reference": "reference"}
 
@@ -40,7 +40,8 @@ def engine_analysis(engine, keep):
 
 def solve(config, output, engine="cpp", extra_residual=None, contact_law=None, overrides=(),
           progress=True, comm=MPI.COMM_WORLD, observer=None, data=None):
-    """Run the model of `config` (a path or a dict) and write `output`.
+    """Run the model of `config` (a path or a dict) and write `output`
+    (None: write nothing, the run kept in memory).
 
     engine: "cpp" (the C++ time loop on JIT-compiled forms) or "reference"
       (stock dolfinx/PETSc Newton, its own loop: the independent check).
@@ -54,16 +55,20 @@ def solve(config, output, engine="cpp", extra_residual=None, contact_law=None, o
       config's obstacle geometry (model.JitModel lists the keys).
     observer(step, record): called after each accepted step.
     Returns the summary (the dict written to output/summary.json). Raises
-    ConfigError, NewtonFailure, OutputError, Interrupted (piezocontact.cpp)."""
+    ConfigError, NewtonFailure, OutputError, Interrupted (piezocontact.cpp).
+
+    A thin front end of piezocontact.Problem: with output None it is
+    Problem.from_config(config).solve(); with an output folder the core
+    makes the mesh there (so that `--resume` finds it) and runs the same
+    driver."""
+    from . import problem
+    if output is None:
+        p = problem.Problem.from_config(config, overrides, comm, extra_residual, contact_law, data)
+        keep = []
+        return problem.run(p.config, p.source, None, engine, keep, progress, observer,
+                           model.factory(extra_residual, contact_law, keep, data, p.mesh),
+                           comm, p.named)
     cfg, source = load(config, overrides)
     keep = []
-    loop = engine_loop(engine, keep, observer)
-    cpp.prepare_output(str(output), source, comm)
-    on_step = None
-    if observer is not None and loop is None:
-        def on_step(n, record):
-            observer(n, json.loads(record))
-    summary = cpp.run_config(json.dumps(cfg), str(output), source, ENGINES[engine], progress,
-                             None, comm, model.factory(extra_residual, contact_law, keep, data),
-                             mesh_tools.convert, loop, on_step, engine_analysis(engine, keep))
-    return json.loads(summary)
+    return problem.run(cfg, source, output, engine, keep, progress, observer,
+                       model.factory(extra_residual, contact_law, keep, data), comm)

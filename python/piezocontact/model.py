@@ -40,9 +40,13 @@ import terms  # noqa: E402
 from entry_points import DIMENSION, elements, points  # noqa: E402
 
 
-def python_mesh(named):
+def python_mesh(named, given=None):
     """dolfinx's Python Mesh around the C++ mesh of a NamedMesh, on the
-    coordinate element of the forms."""
+    coordinate element of the forms; `given`: the user's own Python Mesh of
+    it (piezocontact.Problem), so that their UFL data and the Functions
+    returned live on their mesh."""
+    if given is not None:
+        return given
     cpp_mesh = named.mesh
     cell_name = compat.cell_name(cpp_mesh.topology)
     if cpp_mesh.geometry.dim != DIMENSION[cell_name]:  # the element's, and the kernels'
@@ -160,14 +164,15 @@ class JitModel:
         geometry of the obstacle the config gives that boundary (its method
         and law stay the config's)."""
 
-    def __init__(self, named, spec, extra_residual=None, contact_law=None, data=None):
+    def __init__(self, named, spec, extra_residual=None, contact_law=None, data=None,
+                 mesh=None):
         self.named = named
         # a copy: the core's ModelSpec lives for the factory's call only
         self.spec = Spec(spec.manufactured, list(spec.contact), list(spec.electrodes),
                          {b: list(keys) for b, keys in spec.boundary_keys.items()},
                          tuple(spec.degrees), spec.axisymmetric, list(spec.expression_keys),
                          list(spec.obstacles), list(spec.with_obstacle), spec.linearised)
-        self.mesh = msh = python_mesh(named)
+        self.mesh = msh = python_mesh(named, mesh)
         cell_name = compat.cell_name(msh.topology)
         _, mixed, pressure = elements(cell_name, *spec.degrees)
         self.W = compat.functionspace(msh, mixed)
@@ -532,12 +537,13 @@ class JitModel:
         return m
 
 
-def factory(extra_residual=None, contact_law=None, keep=None, data=None):
+def factory(extra_residual=None, contact_law=None, keep=None, data=None, mesh=None):
     """A model factory for the C++ driver: (NamedMesh, ModelSpec) -> Model.
     The JitModel is appended to `keep` (its Python objects must outlive the
-    run, and the reference engine works on them)."""
+    run, and the reference engine works on them). `mesh`: the Python Mesh
+    of the NamedMesh the driver is given (piezocontact.Problem)."""
     def make(named, spec):
-        model = JitModel(named, spec, extra_residual, contact_law, data)
+        model = JitModel(named, spec, extra_residual, contact_law, data, mesh)
         if keep is not None:
             keep.append(model)
         return model.cpp_model()
