@@ -244,6 +244,16 @@ read_meshtags(dfx::io::XDMFFile& f, std::shared_ptr<const Mesh> mesh, const std:
           {tags.values().begin(), tags.values().end()}};
 }
 
+/// The degree of the coordinate element (0.11: one per cell type)
+inline int coordinate_degree(const Mesh& mesh)
+{
+#if PIEZO_DOLFINX_011
+  return mesh.geometry().cmaps().front().degree();
+#else
+  return mesh.geometry().cmap().degree();
+#endif
+}
+
 /// MeshTags hold the topology since 0.6 (the mesh before)
 inline std::shared_ptr<MeshTags> make_meshtags(std::shared_ptr<const Mesh> mesh, int dim,
                                                std::vector<std::int32_t> indices,

@@ -380,6 +380,10 @@ NamedMesh name_mesh(std::shared_ptr<compat::Mesh> mesh,
       and topology.cell_type() != dolfinx::mesh::CellType::tetrahedron)
     throw ConfigError(where + "mesh: cells of type " + dolfinx::mesh::to_string(topology.cell_type())
                       + ": only triangles and tetrahedra are supported");
+  if (compat::coordinate_degree(*mesh) != 1)
+    throw ConfigError(where + "mesh: coordinates of degree "
+                      + std::to_string(compat::coordinate_degree(*mesh))
+                      + ": only affine cells (degree 1) are supported");
   int size = 1;
   MPI_Comm_size(comm, &size);
   std::int64_t ghosts = topology.index_map(tdim)->num_ghosts();

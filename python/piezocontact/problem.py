@@ -105,11 +105,12 @@ class Problem:
         if degree is not None:
             cfg["elements"] = ({"degree": degree} if isinstance(degree, int)
                                else dict(zip(("u", "phi"), degree)))
-        self.config = json.loads(cpp.configure(json.dumps(cfg), [], source))
+        # the mesh first: the config's rules may name what it lacks
         self.named = cpp.name_mesh(compat.cpp(mesh),
                                    None if facet_tags is None else compat.cpp(facet_tags),
                                    None if cell_tags is None else compat.cpp(cell_tags),
                                    dict(boundary_names or {}), dict(region_names or {}), source)
+        self.config = json.loads(cpp.configure(json.dumps(cfg), [], source))
         self._adopt(mesh, extra_residual, contact_law)
 
     def _adopt(self, mesh, extra_residual, contact_law):

@@ -218,3 +218,30 @@ def test_bad_input_is_refused_with_the_configs_message():
             msh, 2, np.arange(2, dtype=np.int32), np.ones(2, np.int32))))
     assert "region_names: regions need cell_tags" in refused(
         lambda: problem(clamp, region_names={"body": 1}))
+    quads = dmesh.create_unit_square(MPI.COMM_WORLD, 2, 2, dmesh.CellType.quadrilateral)
+    assert "mesh: cells of type quadrilateral" in refused(lambda: piezocontact.Problem(
+        quads, None, material={"preset": "PZT-4", "poling": [0, 1]}, boundaries={},
+        time={"T": 1.0, "steps": 1}))
+
+
+def test_an_observers_exception_reaches_the_caller():
+    """A user's observer that raises stops the run with its own exception,
+    on both engines, and the Problem can be solved again."""
+    msh, facets = unit_square(4)
+    problem = example_1(msh, facets, 3)
+
+    def fails(step):
+        raise LookupError(f"stop at step {step.n}")
+    for engine in ("cpp", "reference"):
+        with pytest.raises(LookupError, match="stop at step 1"):
+            problem.solve(engine=engine, observer=fails)
+    assert problem.solve().summary["status"] == "completed"
+
+
+def test_an_output_folder_gets_the_files(tmp_path):
+    """output=DIR writes what the config path writes: the summary returned
+    is summary.json's, and the XDMF file is there."""
+    msh, facets = unit_square(4)
+    solution = example_1(msh, facets, 2).solve(output=tmp_path)
+    assert json.loads((tmp_path / "summary.json").read_text()) == solution.summary
+    assert (tmp_path / "solution.xdmf").is_file()
