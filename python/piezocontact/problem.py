@@ -58,6 +58,16 @@ def _config_error(source, key, message):
     return cpp.ConfigError(f"{source}: {key}: {message}")
 
 
+def _json(cfg, source):
+    """The config as JSON text; a value JSON cannot hold (a UFL value inside
+    a history, an object) is bad input"""
+    try:
+        return json.dumps(cfg)
+    except (TypeError, ValueError) as e:
+        raise cpp.ConfigError(f"{source}: a value that is not a number, string, list or dict "
+                              f"({e}): UFL values go directly under their key") from None
+
+
 class Problem:
     """The model of piezocontact (docs/api.md) on a dolfinx mesh.
 
@@ -97,11 +107,9 @@ class Problem:
         cfg["time"] = plain(time)
         d = mesh.geometry.dim
         if loads is not None:
-            cfg["loads"] = self._split_ufl(dict(loads), "loads", "loads", d)
-        cfg["boundaries"] = {
-            name: self._split_ufl(plain_boundary(b), f"boundaries.{name}",
-                                  f"boundaries.{name}", d)
-            for name, b in dict(boundaries).items()}
+            cfg["loads"] = self._split_ufl(dict(loads), "loads", d)
+        cfg["boundaries"] = {name: self._split_ufl(plain_boundary(b), f"boundaries.{name}", d)
+                             for name, b in dict(boundaries).items()}
         if degree is not None:
             cfg["elements"] = ({"degree": degree} if isinstance(degree, int)
                                else dict(zip(("u", "phi"), degree)))
@@ -110,7 +118,7 @@ class Problem:
                                    None if facet_tags is None else compat.cpp(facet_tags),
                                    None if cell_tags is None else compat.cpp(cell_tags),
                                    dict(boundary_names or {}), dict(region_names or {}), source)
-        self.config = json.loads(cpp.configure(json.dumps(cfg), [], source))
+        self.config = json.loads(cpp.configure(_json(cfg, source), [], source))
         self._adopt(mesh, extra_residual, contact_law)
 
     def _adopt(self, mesh, extra_residual, contact_law):
@@ -119,7 +127,7 @@ class Problem:
         self.mesh = mesh
         self.extra_residual, self.contact_law = extra_residual, contact_law
 
-    def _split_ufl(self, block, key, data_key, d):
+    def _split_ufl(self, block, key, d):
         """The block with its UFL values moved to the data hook (a zero in
         their place, to which the hook's expression adds)."""
         out = {}
@@ -133,7 +141,7 @@ class Problem:
                                     "loads.charge_density, boundaries.NAME.traction and "
                                     "boundaries.NAME.surface_charge only (else: a number, a "
                                     "history or an expression string)")
-            self.data[f"{data_key}.{k}"] = as_function_of_x_t(v)
+            self.data[f"{key}.{k}"] = as_function_of_x_t(v)
             out[k] = [0.0] * d if UFL_KEYS[k] == "vector" else 0.0
         return out
 

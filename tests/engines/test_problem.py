@@ -218,6 +218,9 @@ def test_bad_input_is_refused_with_the_configs_message():
             msh, 2, np.arange(2, dtype=np.int32), np.ones(2, np.int32))))
     assert "region_names: regions need cell_tags" in refused(
         lambda: problem(clamp, region_names={"body": 1}))
+    assert "UFL values go directly under their key" in refused(lambda: problem(
+        {**clamp, "top": {"traction": {"value": ufl.as_vector((0.0, -1.0)),
+                                       "history": {"ramp": 1.0}}}}))
     quads = dmesh.create_unit_square(MPI.COMM_WORLD, 2, 2, dmesh.CellType.quadrilateral)
     assert "mesh: cells of type quadrilateral" in refused(lambda: piezocontact.Problem(
         quads, None, material={"preset": "PZT-4", "poling": [0, 1]}, boundaries={},
