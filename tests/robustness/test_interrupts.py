@@ -23,12 +23,12 @@ KILLED = ["mesh.n=32", "time.steps=2000", "output.nodal=all"]
 FIELDS = {"u", "phi", "contact_pressure", "D", "stress_xx", "stress_yy", "stress_xy"}
 
 
-def start(solver, out, overrides, config=SQUARE, np_=1):
+def start(solver, out, overrides, config=SQUARE, np_=1, env=None):
     args = command(solver, np_) + ["--config", str(config), "--output", str(out), "--quiet"]
     for o in overrides:
         args += ["--set", o]
-    return subprocess.Popen(args, env=ENV, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
-                            text=True)
+    return subprocess.Popen(args, env={**ENV, **(env or {})}, stdout=subprocess.DEVNULL,
+                            stderr=subprocess.PIPE, text=True)
 
 
 def wait_for_steps(proc, out, steps, timeout=300):
@@ -300,19 +300,15 @@ def ranks_of(proc):
 
 
 def test_sigterm_under_mpirun_stops_every_rank(solver, tmp_path):
-    """mpirun passes SIGTERM (and SIGINT, as SIGTERM) to the ranks: all stop
-    at the same iteration and the summary says so; the run then resumes on
-    one process to the serial answer (a checkpoint is by input vertex).
-    Where mpirun kills its ranks instead (Open MPI 6), the signal goes to
-    one rank, as README says: every rank still stops at once."""
+    """A SIGTERM to one rank under mpirun: all ranks stop at the same
+    iteration and the summary says so; the run then resumes on one process
+    to the serial answer (a checkpoint is by input vertex). A rank is
+    signalled, not mpirun: what mpirun does with a signal depends on the
+    Open MPI and the load (the next test)."""
     overrides = ["mesh.n=24", "time.steps=200", "output.nodal=all"]
-    forwards = mpirun_forwards_sigterm(tmp_path)
     proc = start(solver, tmp_path / "part", overrides, np_=2)
     wait_for_steps(proc, tmp_path / "part", 10)
-    if forwards:
-        proc.send_signal(signal.SIGTERM)
-    else:
-        os.kill(ranks_of(proc)[-1], signal.SIGTERM)
+    os.kill(ranks_of(proc)[-1], signal.SIGTERM)
     proc.communicate(timeout=60)
     assert proc.returncode != 0
     check_outputs(tmp_path / "part", status="interrupted")
@@ -324,6 +320,27 @@ def test_sigterm_under_mpirun_stops_every_rank(solver, tmp_path):
     a, b = a[np.lexsort(a[:, :2].T)], b[np.lexsort(b[:, :2].T)]
     np.testing.assert_allclose(b, a, rtol=1e-9, atol=1e-9 * np.abs(a[:, 2:]).max())
     assert resumed["steps"][-1]["t"] == full["steps"][-1]["t"]
+
+
+def test_sigterm_to_mpirun_loses_nothing(solver, tmp_path):
+    """A SIGTERM to mpirun itself. Open MPI 4 and 5 forward it and send
+    SIGKILL 1 s later; 6.0 kills the ranks outright. So the run ends
+    "interrupted" when the step under way finished within that second, else
+    "running" (README, "When things go wrong": a loaded machine, CI's two
+    lanes, gives either). Either way every file is readable and --resume
+    continues."""
+    overrides = ["mesh.n=24", "time.steps=200", "output.nodal=all"]
+    forwards = mpirun_forwards_sigterm(tmp_path)
+    proc = start(solver, tmp_path / "part", overrides, np_=2)
+    wait_for_steps(proc, tmp_path / "part", 10)
+    proc.send_signal(signal.SIGTERM)
+    proc.communicate(timeout=60)
+    assert proc.returncode != 0
+    status = json.loads((tmp_path / "part" / "summary.json").read_text())["status"]
+    assert status in (("interrupted", "running") if forwards else ("running",))
+    steps = check_outputs(tmp_path / "part", status=status)
+    resumed, _ = resume(solver, tmp_path / "part")
+    assert resumed["status"] == "completed" and len(resumed["steps"]) == 200 > steps
 
 
 def test_resume_refuses_what_it_cannot_continue(solver, tmp_path):
