@@ -14,12 +14,6 @@ from typing import Any, Optional, Sequence
 import numpy as np
 import ufl
 
-# The keys whose value may be a UFL expression, and their zero in the config
-# (the UFL part adds to the config's value: forms/ `data` hook, model.py)
-UFL_KEYS = {"body_force": "vector", "charge_density": "scalar",
-            "traction": "vector", "surface_charge": "scalar"}
-
-
 def is_ufl(value):
     """A UFL expression, a function f(x, t) returning one, or a list with a
     UFL entry (a vector written entry by entry)."""

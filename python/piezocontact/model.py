@@ -56,6 +56,18 @@ def python_mesh(named, given=None):
     return dmesh.Mesh(cpp_mesh, ufl.Mesh(coordinate))
 
 
+def ufl_keys(dim):
+    """{config key: shape} of the data a UFL expression may give (the
+    `data` hook's keys, from the forms' Datum declarations): the shared
+    data that vary in space but the gap ("loads.body_force"), and a
+    boundary's ("boundaries.NAME." + "traction")."""
+    groups = entry_points.data(dim, False)
+    shared = {d.key: d.shape for n, d in groups["shared"].items() if d.spatial and n != "g"}
+    load = {"boundaries.NAME." + d.key: d.shape for d in groups["load"].values()
+            if d.spatial and "." not in d.key}
+    return {**shared, **load}
+
+
 def _constant(msh, shape):
     return fem.Constant(msh, np.zeros(shape))
 

@@ -16,12 +16,13 @@ import shutil
 import tempfile
 from dataclasses import dataclass
 
+import numpy as np
 from dolfinx import fem
 from mpi4py import MPI
 
 from . import _compat as compat
 from . import cpp, mesh_tools, model
-from .data import UFL_KEYS, as_function_of_x_t, is_ufl, plain
+from .data import as_function_of_x_t, is_ufl, plain
 
 SOURCE = "piezocontact.Problem"
 
@@ -130,19 +131,19 @@ class Problem:
     def _split_ufl(self, block, key, d):
         """The block with its UFL values moved to the data hook (a zero in
         their place, to which the hook's expression adds)."""
+        taken = model.ufl_keys(d)
+        generic = "boundaries.NAME" if key.startswith("boundaries.") else key
         out = {}
         for k, v in block.items():
             if not is_ufl(v):
                 out[k] = plain(v)
                 continue
-            if k not in UFL_KEYS:
+            if f"{generic}.{k}" not in taken:
                 raise _config_error(self.source, f"{key}.{k}",
-                                    "a UFL value is taken by loads.body_force, "
-                                    "loads.charge_density, boundaries.NAME.traction and "
-                                    "boundaries.NAME.surface_charge only (else: a number, a "
-                                    "history or an expression string)")
+                                    f"a UFL value is taken by {', '.join(taken)} only (else: "
+                                    "a number, a history or an expression string)")
             self.data[f"{key}.{k}"] = as_function_of_x_t(v)
-            out[k] = [0.0] * d if UFL_KEYS[k] == "vector" else 0.0
+            out[k] = np.zeros(taken[f"{generic}.{k}"]).tolist()  # the UFL part adds to it
         return out
 
     @classmethod
