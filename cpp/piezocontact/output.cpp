@@ -185,7 +185,11 @@ void write_npy(const fs::path& path, const std::vector<double>& data, std::size_
 
 std::tuple<std::vector<double>, std::size_t, std::size_t> read_npy(const fs::path& path)
 {
+  errno = 0;
   std::ifstream in(path, std::ios::binary);
+  if (!in)
+    throw std::runtime_error(path.string() + ": "
+                             + (errno ? std::strerror(errno) : "cannot be opened"));
   char magic[10];
   if (!in.read(magic, 10) or std::string(magic, 6) != "\x93NUMPY" or magic[6] != 1)
     throw std::runtime_error(path.string() + ": not a version-1 .npy file");
@@ -236,10 +240,11 @@ void collectively(MPI_Comm comm, bool on_this_rank, const std::function<void()>&
 void silence_hdf5_errors() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
 
 Writer::Writer(const Problem& problem, const OutputSettings& settings, const fs::path& dir,
-               int resume_step)
+               std::optional<int> resumed_step)
     : _problem(problem), _dir(dir), _nodal(settings.nodal), _xdmf(settings.xdmf)
 {
   const bool root = rank_of(problem.comm) == 0;
+  const int resume_step = resumed_step.value_or(0);
   collectively(problem.comm, root,
                [&]
                {
@@ -257,7 +262,7 @@ Writer::Writer(const Problem& problem, const OutputSettings& settings, const fs:
                  // every checkpoint but the one resumed (a kill
                  // may land between a summary and the removal of its predecessor's)
                  remove_numbered_after(dir / "checkpoint", "state_", ".npy", -1,
-                                       resume_step > 0 ? resume_step : -1);
+                                       resumed_step.value_or(-1));
                  for (const char* f : nodal_names)
                    remove_numbered_after(dir / "nodal", std::string(f) + "_", ".npy",
                                          resume_step);

@@ -22,6 +22,7 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 
 namespace pugi
@@ -65,10 +66,11 @@ void silence_hdf5_errors();
 class Writer
 {
 public:
-  /// A fresh run (resume_step = 0) clears earlier outputs of DIR; a resumed
-  /// one keeps steps 1..resume_step and drops anything written after them.
+  /// A fresh run (no resumed step) clears earlier outputs of DIR; a run
+  /// resumed at step n (0 too: killed before its first step) keeps steps
+  /// 1..n and the checkpoint of step n, and drops anything written after.
   Writer(const Problem& problem, const OutputSettings& settings,
-         const std::filesystem::path& dir, int resume_step);
+         const std::filesystem::path& dir, std::optional<int> resumed_step);
   ~Writer();
 
   /// Write the state of problem.u, problem.phi (updated by the caller)

@@ -110,7 +110,8 @@ Record::Record(Problem& problem, const RunSettings& settings, std::filesystem::p
   try
   {
     if (!in_memory())
-      _writer.emplace(problem, settings.output, _dir, _state.step);
+      _writer.emplace(problem, settings.output, _dir,
+                      resume ? std::optional<int>(_state.step) : std::nullopt);
   }
   catch (const OutputError& e)
   {

@@ -212,6 +212,46 @@ def test_resume_keeps_step_cuts(solver, tmp_path):
     assert_same_run(full, resumed, REL[solver])
 
 
+def test_resume_before_the_first_step(solver, tmp_path):
+    """A run that stopped before its first step (Newton fails at step 1: k =
+    0.5, at most 3 iterations, no halving) resumes from its step-0
+    checkpoint, and fails there again the same way; the resume keeps that
+    checkpoint (it once removed it, as a fresh run does, and refused)."""
+    cfg = json.loads(VARIANT.read_text())  # on a fixed mesh: iteration counts
+    cfg["mesh"] = {"type": "xdmf", "path": str(ROOT / "tests" / "data" / "contactor_0.2.xdmf")}
+    config = tmp_path / "variant.json"
+    config.write_text(json.dumps(cfg))
+    out = tmp_path / "run"
+    overrides = ["time.steps=20", "output.nodal=none", "solver.newton.max_iterations=3",
+                 "solver.newton.max_step_halvings=0"]
+    first, proc = run_solver(solver, out, overrides, config=config, check=False)
+    assert proc.returncode == 3 and first["checkpoint"]["step"] == 0 and not first["steps"]
+    resumed, again = resume(solver, out, check=False)
+    assert again.returncode == 3, again.stderr
+    assert again.stderr.splitlines()[-1] == proc.stderr.splitlines()[-1]
+    assert [r["step"] for r in resumed["resumed"]] == [0]
+    assert without_timing(resumed) == without_timing(first)
+    assert [p.name for p in (out / "checkpoint").iterdir()] == ["state_000000.npy"]
+
+
+def test_resume_after_a_kill_before_the_first_step(solver, tmp_path):
+    """Killed as soon as its summary appears (step 0 written, the first step
+    under way, most times), a run resumes to the uninterrupted one."""
+    overrides = ["mesh.n=48", "time.steps=6", "output.nodal=all"]
+    full, _ = run_solver(solver, tmp_path / "full", overrides)
+    part = tmp_path / "part"
+    proc = start(solver, part, overrides)
+    wait_for_steps(proc, part, 0)
+    kill9(proc)
+    done = check_outputs(part)
+    resumed, _ = resume(solver, part)
+    assert [r["step"] for r in resumed["resumed"]] == [done]
+    assert_same_run(full, resumed, REL[solver])
+    for name in ("u", "phi", "contact_pressure"):
+        np.testing.assert_array_equal(np.load(part / "nodal" / f"{name}_0006.npy"),
+                                      np.load(tmp_path / "full" / "nodal" / f"{name}_0006.npy"))
+
+
 def test_resume_extends_a_run_to_a_later_time(solver, tmp_path):
     """A completed run to T = 0.5, extended to T = 1 at the same step,
     equals the run to T = 1; the step size cannot change, nor other keys."""
