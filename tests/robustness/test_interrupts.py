@@ -108,14 +108,21 @@ def check_outputs(out, status="running"):
 
 
 def kill_at_random_instant(solver, out, seed):
-    """kill -9 a run some random time after it has written its first files.
-    PIEZO_KILL_SEED shifts the seeds, for campaigns at other instants."""
+    """kill -9 a run some random time after it has written its first files;
+    what it left resumes. PIEZO_KILL_SEED shifts the seeds, for campaigns at
+    other instants."""
     proc = start(solver, out, KILLED)
     wait_for_steps(proc, out, 0)
     seed += int(os.environ.get("PIEZO_KILL_SEED", "0"))
     time.sleep(random.Random(seed).uniform(0.0, 1.5))
     kill9(proc)
-    return check_outputs(out)
+    done = check_outputs(out)
+    # to a power of two of steps at the same k = 1/2000 (m k / m == k exactly)
+    m = 1 << done.bit_length()
+    resumed, _ = resume(solver, out, overrides=[f"time.steps={m}", f"time.T={m / 2000!r}"])
+    assert [r["step"] for r in resumed["resumed"]] == [done]
+    assert check_outputs(out, status="completed") == m
+    return done
 
 
 @pytest.mark.parametrize("seed", range(3))
