@@ -163,6 +163,17 @@ def assert_same_run(a, b, rel):
     close(without_timing(a), without_timing(b))
 
 
+def full_and_killed(solver, tmp_path, overrides, steps, config=SQUARE):
+    """The run whole, in tmp_path/full, and killed in tmp_path/part once its
+    summary lists `steps` steps: (full summary, part, steps part recorded)."""
+    full, _ = run_solver(solver, tmp_path / "full", overrides, config=config)
+    part = tmp_path / "part"
+    proc = start(solver, part, overrides, config=config)
+    wait_for_steps(proc, part, steps)
+    kill9(proc)
+    return full, part, check_outputs(part)
+
+
 # The bar of the interrupted-runs issue: bit for bit (one loop, either front door)
 REL = {"cpp": 0.0, "cpp-jit": 0.0}
 
@@ -172,12 +183,7 @@ def test_resume_after_kill_reproduces_the_run(solver, tmp_path):
     resumed run's summary, nodal files and XDMF data equal the uninterrupted
     run's, every step."""
     overrides = ["mesh.n=24", "time.steps=150", "output.nodal=all"]
-    full, _ = run_solver(solver, tmp_path / "full", overrides)
-    part = tmp_path / "part"
-    proc = start(solver, part, overrides)
-    wait_for_steps(proc, part, 40)
-    kill9(proc)
-    first = check_outputs(part)
+    full, part, first = full_and_killed(solver, tmp_path, overrides, 40)
     args = command(solver) + ["--output", str(part), "--resume", "--quiet"]
     proc = subprocess.Popen(args, env=ENV, stdout=subprocess.DEVNULL,
                             stderr=subprocess.DEVNULL)
@@ -208,13 +214,8 @@ def test_resume_keeps_step_cuts(solver, tmp_path):
     its first steps resumes to the uninterrupted one, events included."""
     overrides = ["mesh.size=0.05", "time.steps=40", "output.nodal=none",
                  "solver.newton.max_iterations=2", "solver.newton.max_step_halvings=8"]
-    full, _ = run_solver(solver, tmp_path / "full", overrides, config=VARIANT)
+    full, part, _ = full_and_killed(solver, tmp_path, overrides, 1, config=VARIANT)
     assert len(full["events"]) >= 3
-    part = tmp_path / "part"
-    proc = start(solver, part, overrides, config=VARIANT)
-    wait_for_steps(proc, part, 1)
-    kill9(proc)
-    check_outputs(part)
     resumed, _ = resume(solver, part)
     assert_same_run(full, resumed, REL[solver])
 
@@ -245,12 +246,7 @@ def test_resume_after_a_kill_before_the_first_step(solver, tmp_path):
     """Killed as soon as its summary appears (step 0 written, the first step
     under way, most times), a run resumes to the uninterrupted one."""
     overrides = ["mesh.n=48", "time.steps=6", "output.nodal=all"]
-    full, _ = run_solver(solver, tmp_path / "full", overrides)
-    part = tmp_path / "part"
-    proc = start(solver, part, overrides)
-    wait_for_steps(proc, part, 0)
-    kill9(proc)
-    done = check_outputs(part)
+    full, part, done = full_and_killed(solver, tmp_path, overrides, 0)
     resumed, _ = resume(solver, part)
     assert [r["step"] for r in resumed["resumed"]] == [done]
     assert_same_run(full, resumed, REL[solver])
